@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Installs every package Candela needs to build, run and test on Debian 12
+# (bookworm) or Raspberry Pi OS bookworm. Safe to run again.
+#   board/install-deps.sh            build + run + test dependencies
+#   board/install-deps.sh --runtime  only what the kiosk needs to run
+set -euo pipefail
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+
+runtime=(
+  libegl1 libgles2 libgbm1 libdrm2 libpng16-16 libfftw3-single3
+  libegl-mesa0 libgl1-mesa-dri libgpiod2 libx11-6
+)
+build=(
+  build-essential cmake ninja-build pkg-config clang-format
+  libegl-dev libgles-dev libdrm-dev libgbm-dev libx11-dev
+  libtomlplusplus-dev libcli11-dev libpng-dev libfftw3-dev
+  libeigen3-dev libgpiod-dev gpiod
+  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+tests=(
+  ffmpeg python3 python3-numpy xvfb xauth
+  # virtual board (board/virtual): QEMU + Debian kernel + out-of-tree drivers
+  qemu-system-x86 busybox-static cpio kmod gzip xz-utils bc flex bison libelf-dev
+  v4l-utils libdrm-tests
+)
+
+want=("${runtime[@]}")
+if [ "${1:-}" != "--runtime" ]; then want+=("${build[@]}" "${tests[@]}"); fi
+
+missing=()
+for p in "${want[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "install-deps: installing ${missing[*]}" >&2
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+else
+  echo "install-deps: all packages present" >&2
+fi

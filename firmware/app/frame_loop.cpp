@@ -1,0 +1,68 @@
+#include "app/frame_loop.h"
+
+#include <chrono>
+
+#include "core/clock.h"
+
+namespace candela {
+
+LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s) {
+  using Clock = std::chrono::steady_clock;
+  StepClock clock(s.steps_per_second);
+  const bool lockstep = !display.paced_by_vsync();
+  const int steps_per_frame =
+      s.steps_per_second / (s.frames_per_second > 0 ? s.frames_per_second : 60) > 0
+          ? s.steps_per_second / s.frames_per_second
+          : 1;
+  LoopResult result;
+  StepContext step;
+  step.dt = clock.step_seconds();
+  FrameContext frame;
+
+  auto do_step = [&] {
+    step.step = clock.steps();
+    step.time = clock.seconds();
+    scene.update(step);
+    clock.tick();
+  };
+  // Frame 0 shows the state after the first step.
+  do_step();
+  auto last_present = Clock::now();
+  auto prev_begin = last_present;
+  while (s.max_frames == 0 || result.frames < s.max_frames) {
+    if (s.stop && s.stop->load(std::memory_order_relaxed)) break;
+    if (!display.poll_events(scene)) {
+      result.quit_requested = true;
+      break;
+    }
+    const auto begin = Clock::now();
+    if (result.frames > 0) {
+      const int due =
+          lockstep ? steps_per_frame
+                   : clock.advance_wall(
+                         std::chrono::duration_cast<std::chrono::nanoseconds>(begin - prev_begin)
+                             .count());
+      for (int i = 0; i < due; ++i) do_step();
+    }
+    prev_begin = begin;
+    display.begin_frame();
+    frame.width = display.width();
+    frame.height = display.height();
+    frame.frame = result.frames;
+    frame.step = clock.steps() - 1;
+    scene.draw(frame);
+    display.present();
+    const auto end = Clock::now();
+    if (s.stats) {
+      const double work = std::chrono::duration<double, std::milli>(end - begin).count();
+      const double interval = std::chrono::duration<double, std::milli>(end - last_present).count();
+      s.stats->add(result.frames == 0 ? work : interval, work);
+    }
+    last_present = end;
+    ++result.frames;
+  }
+  result.steps = clock.steps();
+  return result;
+}
+
+}  // namespace candela

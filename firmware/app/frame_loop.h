@@ -1,0 +1,32 @@
+// The frame loop. It knows a Display and a Scene, never which backend it has.
+// Animation advances on the fixed-step clock: in lockstep with frames where
+// nothing paces presentation (headless: deterministic output), by wall time
+// where vsync does.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "app/frame_stats.h"
+#include "display/display.h"
+#include "scene/scene.h"
+
+namespace candela {
+
+struct LoopSettings {
+  uint64_t max_frames = 0;  // 0: until quit
+  int steps_per_second = 60;
+  int frames_per_second = 60;               // lockstep: steps per frame = steps_per_second / fps
+  const std::atomic<bool>* stop = nullptr;  // set by a signal handler
+  FrameStats* stats = nullptr;
+};
+
+struct LoopResult {
+  uint64_t frames = 0;
+  uint64_t steps = 0;
+  bool quit_requested = false;
+};
+
+LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& settings);
+
+}  // namespace candela

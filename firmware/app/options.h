@@ -1,0 +1,27 @@
+// candela's command line.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "display/display.h"
+
+namespace candela {
+
+struct Options {
+  DisplayOptions display;
+  std::string scene;  // empty: the built-in default scene
+  bool test_pattern = false;
+  bool check = false;
+  bool bench = false;
+  bool list_elements = false;
+  uint64_t frames = 0;  // 0: run until quit
+  uint64_t seed = 0;    // 0: the scene's seed
+  std::string log_level = "info";
+};
+
+// Parses argv. Returns -1 to go on, or an exit status (after --help, or a
+// usage error, which is printed).
+int parse_options(int argc, char** argv, Options& out);
+
+}  // namespace candela

@@ -1,0 +1,32 @@
+// 8-bit images and PNG files (libpng). Rows are stored top to bottom.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace candela {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  int channels = 0;  // 1 = gray, 2 = gray+alpha, 3 = RGB, 4 = RGBA
+  std::vector<uint8_t> pixels;
+
+  uint8_t* row(int y) { return pixels.data() + static_cast<size_t>(y) * width * channels; }
+  const uint8_t* row(int y) const {
+    return pixels.data() + static_cast<size_t>(y) * width * channels;
+  }
+  uint8_t at(int x, int y, int c = 0) const { return row(y)[x * channels + c]; }
+};
+
+// Reads any PNG, converted to `want_channels` (0 = as stored, 8-bit).
+// Throws ConfigError naming the file and what is wrong with it.
+Image read_png(const std::string& path, int want_channels = 0);
+// Writes atomically (temporary file + rename). Throws RuntimeError on failure.
+void write_png(const std::string& path, const Image& image);
+// The same, from a raw buffer; stride in bytes (0 = tightly packed).
+void write_png(const std::string& path, int width, int height, int channels, const uint8_t* data,
+               int stride = 0);
+
+}  // namespace candela

@@ -1,0 +1,62 @@
+// "A place to draw": the one interface the frame loop knows. Backends (one
+// file each): drm_display.cpp (kiosk), window_display.cpp (desktop emulator),
+// headless_display.cpp (tests, CI, frame dumps). open_display() picks one.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+
+namespace candela {
+
+// Keys the emulator and kiosk understand; backends translate their own codes.
+enum class Key { kQuit, kLeft, kRight, kUp, kDown, kSpace, kBlowOut, kOther };
+
+class DisplayEvents {
+ public:
+  virtual ~DisplayEvents() = default;
+  virtual void on_key(Key key) = 0;
+};
+
+struct DisplayOptions {
+  std::string kind = "auto";  // auto | drm | window | headless
+  int width = 0;              // 0: the backend's default (DRM: the connector's preferred mode)
+  int height = 0;
+  int refresh_hz = 0;      // DRM mode choice; 0: preferred
+  std::string drm_device;  // e.g. /dev/dri/card1; empty: the first card with a connected connector
+  std::string out_path;    // headless: PNG folder, .y4m or .mp4; empty: render only
+  int fps = 60;            // the rate frames are written at (headless video)
+  bool vsync = true;
+};
+
+class Display {
+ public:
+  virtual ~Display() = default;
+  virtual std::string_view name() const = 0;
+  virtual int width() const = 0;
+  virtual int height() const = 0;
+  // True when present() waits for the display's vertical blank.
+  virtual bool paced_by_vsync() const = 0;
+  // Binds the framebuffer this frame draws into and sets the viewport.
+  virtual void begin_frame() = 0;
+  // Shows (or writes) the frame. Never allocates once running.
+  virtual void present() = 0;
+  // Delivers pending input; returns false once the user asked to quit.
+  virtual bool poll_events(DisplayEvents& events) = 0;
+  // Vblanks that passed without a new frame, or -1 where the backend cannot tell.
+  virtual int64_t missed_vblanks() const { return -1; }
+  // Waits until everything written so far is on disk (headless). Throws on I/O failure.
+  virtual void finish() {}
+};
+
+// Opens the named backend, or for "auto" tries drm, window, headless in that
+// order and logs why each skipped one was skipped. Throws RuntimeError if none opens.
+std::unique_ptr<Display> open_display(const DisplayOptions& options);
+
+// The backends, each throwing RuntimeError with the reason it cannot open.
+std::unique_ptr<Display> open_drm_display(const DisplayOptions& options);
+std::unique_ptr<Display> open_window_display(const DisplayOptions& options);
+std::unique_ptr<Display> open_headless_display(const DisplayOptions& options);
+
+}  // namespace candela

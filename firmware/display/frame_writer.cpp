@@ -1,0 +1,256 @@
+#include "display/frame_writer.h"
+
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "core/log.h"
+
+extern char** environ;
+
+namespace candela {
+namespace {
+
+bool ends_with(const std::string& s, const char* suffix) {
+  const size_t n = std::strlen(suffix);
+  return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
+}
+
+class PngFolderSink final : public FrameSink {
+ public:
+  PngFolderSink(std::string dir, int w, int h)
+      : dir_(std::move(dir)), w_(w), h_(h), flipped_(static_cast<size_t>(w) * h * 4) {
+    if (mkdir(dir_.c_str(), 0755) != 0 && errno != EEXIST)
+      throw RuntimeError(dir_ + ": cannot create output folder: " + std::strerror(errno));
+    struct stat st {};
+    if (stat(dir_.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+      throw RuntimeError(dir_ + ": expected a folder (or a path ending in .y4m or .mp4)");
+  }
+  void write(const uint8_t* rgba) override {
+    const size_t row = static_cast<size_t>(w_) * 4;
+    for (int y = 0; y < h_; ++y) std::memcpy(&flipped_[row * y], rgba + row * (h_ - 1 - y), row);
+    char name[32];
+    std::snprintf(name, sizeof name, "/frame_%06d.png", index_++);
+    write_png(dir_ + name, w_, h_, 4, flipped_.data());
+  }
+
+ private:
+  std::string dir_;
+  int w_, h_;
+  int index_ = 0;
+  std::vector<uint8_t> flipped_;
+};
+
+// YUV 4:4:4, BT.601 full range: exact enough to check pixels from, and
+// played by ffmpeg/mpv/VLC.
+class Y4mSink final : public FrameSink {
+ public:
+  Y4mSink(const std::string& path, int w, int h, int fps)
+      : path_(path), w_(w), h_(h), planes_(static_cast<size_t>(w) * h * 3) {
+    f_ = std::fopen(path.c_str(), "wb");
+    if (!f_) throw RuntimeError(path + ": cannot write: " + std::strerror(errno));
+    std::fprintf(f_, "YUV4MPEG2 W%d H%d F%d:1 Ip A1:1 C444 XCOLORRANGE=FULL\n", w, h, fps);
+  }
+  ~Y4mSink() override {
+    if (f_) std::fclose(f_);
+  }
+  void write(const uint8_t* rgba) override {
+    const size_t n = static_cast<size_t>(w_) * h_;
+    for (int y = 0; y < h_; ++y) {
+      const uint8_t* src = rgba + static_cast<size_t>(h_ - 1 - y) * w_ * 4;
+      for (int x = 0; x < w_; ++x, src += 4) {
+        const int r = src[0], g = src[1], b = src[2];
+        const size_t i = static_cast<size_t>(y) * w_ + x;
+        planes_[i] = static_cast<uint8_t>((77 * r + 150 * g + 29 * b + 128) >> 8);
+        planes_[n + i] = static_cast<uint8_t>(((-43 * r - 85 * g + 128 * b + 128) >> 8) + 128);
+        planes_[2 * n + i] = static_cast<uint8_t>(((128 * r - 107 * g - 21 * b + 128) >> 8) + 128);
+      }
+    }
+    if (std::fputs("FRAME\n", f_) < 0 ||
+        std::fwrite(planes_.data(), 1, planes_.size(), f_) != planes_.size())
+      throw RuntimeError(path_ + ": write failed: " + std::strerror(errno));
+  }
+  void close() override {
+    if (f_ && std::fclose(f_) != 0) {
+      f_ = nullptr;
+      throw RuntimeError(path_ + ": write failed: " + std::strerror(errno));
+    }
+    f_ = nullptr;
+  }
+
+ private:
+  std::string path_;
+  int w_, h_;
+  std::vector<uint8_t> planes_;
+  FILE* f_ = nullptr;
+};
+
+class FfmpegSink final : public FrameSink {
+ public:
+  FfmpegSink(const std::string& path, int w, int h, int fps)
+      : path_(path), bytes_(static_cast<size_t>(w) * h * 4) {
+    int fds[2];
+    if (pipe(fds) != 0) throw RuntimeError(path + ": pipe failed");
+    const std::string size = std::to_string(w) + "x" + std::to_string(h);
+    const std::string rate = std::to_string(fps);
+    std::vector<std::string> args = {"ffmpeg",
+                                     "-hide_banner",
+                                     "-loglevel",
+                                     "error",
+                                     "-y",
+                                     "-f",
+                                     "rawvideo",
+                                     "-pix_fmt",
+                                     "rgba",
+                                     "-s",
+                                     size,
+                                     "-r",
+                                     rate,
+                                     "-i",
+                                     "-",
+                                     "-vf",
+                                     "vflip,pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                     "-pix_fmt",
+                                     "yuv420p",
+                                     "-c:v",
+                                     "libx264",
+                                     "-crf",
+                                     "18",
+                                     path};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_adddup2(&fa, fds[0], 0);
+    posix_spawn_file_actions_addclose(&fa, fds[1]);
+    const int rc = posix_spawnp(&pid_, "ffmpeg", &fa, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+    ::close(fds[0]);
+    if (rc != 0) {
+      ::close(fds[1]);
+      throw RuntimeError(path + ": cannot run ffmpeg (" + std::strerror(rc) +
+                         "); install it (apt-get install ffmpeg) or write a .y4m or a PNG folder");
+    }
+    fd_ = fds[1];
+  }
+  ~FfmpegSink() override {
+    try {
+      close();
+    } catch (const std::exception& e) {
+      LOG_ERROR("%s", e.what());
+    }
+  }
+  void write(const uint8_t* rgba) override {
+    size_t done = 0;
+    while (done < bytes_) {
+      const ssize_t n = ::write(fd_, rgba + done, bytes_ - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) throw RuntimeError(path_ + ": ffmpeg stopped accepting frames");
+      done += static_cast<size_t>(n);
+    }
+  }
+  void close() override {
+    if (fd_ < 0) return;
+    ::close(fd_);
+    fd_ = -1;
+    int status = 0;
+    while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+      throw RuntimeError(path_ + ": ffmpeg failed to encode the video");
+  }
+
+ private:
+  std::string path_;
+  size_t bytes_;
+  pid_t pid_ = -1;
+  int fd_ = -1;
+};
+
+}  // namespace
+
+std::unique_ptr<FrameSink> open_frame_sink(const std::string& path, int w, int h, int fps) {
+  if (ends_with(path, ".y4m")) return std::make_unique<Y4mSink>(path, w, h, fps);
+  if (ends_with(path, ".mp4") || ends_with(path, ".mkv") || ends_with(path, ".webm"))
+    return std::make_unique<FfmpegSink>(path, w, h, fps);
+  return std::make_unique<PngFolderSink>(path, w, h);
+}
+
+AsyncFrameWriter::AsyncFrameWriter(std::unique_ptr<FrameSink> sink, int w, int h, int slots)
+    : sink_(std::move(sink)) {
+  slots_.resize(static_cast<size_t>(slots), std::vector<uint8_t>(static_cast<size_t>(w) * h * 4));
+  thread_ = std::thread([this] { run(); });
+}
+
+AsyncFrameWriter::~AsyncFrameWriter() {
+  try {
+    finish();
+  } catch (const std::exception& e) {
+    LOG_ERROR("%s", e.what());
+  }
+}
+
+uint8_t* AsyncFrameWriter::acquire() {
+  std::unique_lock lock(mu_);
+  cv_.wait(lock, [&] { return count_ < slots_.size() || error_; });
+  if (error_) std::rethrow_exception(error_);
+  return slots_[(head_ + count_) % slots_.size()].data();
+}
+
+void AsyncFrameWriter::submit() {
+  {
+    std::lock_guard lock(mu_);
+    ++count_;
+  }
+  cv_.notify_all();
+}
+
+void AsyncFrameWriter::run() {
+  for (;;) {
+    uint8_t* frame = nullptr;
+    {
+      std::unique_lock lock(mu_);
+      cv_.wait(lock, [&] { return count_ > 0 || stop_; });
+      if (count_ == 0) break;
+      frame = slots_[head_].data();
+    }
+    try {
+      sink_->write(frame);
+    } catch (...) {
+      std::lock_guard lock(mu_);
+      error_ = std::current_exception();
+      count_ = 0;
+      cv_.notify_all();
+      return;
+    }
+    {
+      std::lock_guard lock(mu_);
+      head_ = (head_ + 1) % slots_.size();
+      --count_;
+    }
+    cv_.notify_all();
+  }
+}
+
+void AsyncFrameWriter::finish() {
+  if (finished_) return;
+  finished_ = true;
+  {
+    std::lock_guard lock(mu_);
+    stop_ = true;
+  }
+  cv_.notify_all();
+  if (thread_.joinable()) thread_.join();
+  if (error_) std::rethrow_exception(error_);
+  sink_->close();
+}
+
+}  // namespace candela

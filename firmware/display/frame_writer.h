@@ -1,0 +1,52 @@
+// Where headless frames go: a PNG folder, a .y4m video, or an .mp4 through
+// ffmpeg. Writing happens on its own thread into preallocated slots, so the
+// render thread does no file I/O; it waits only if the disk falls behind.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace candela {
+
+class FrameSink {
+ public:
+  virtual ~FrameSink() = default;
+  // One RGBA frame, rows bottom to top (as glReadPixels returns them).
+  virtual void write(const uint8_t* rgba_bottom_up) = 0;
+  virtual void close() {}
+};
+
+// Chooses by path: "*.y4m", "*.mp4" (needs ffmpeg on PATH), else a folder of
+// frame_000000.png ... Throws RuntimeError naming the path and the problem.
+std::unique_ptr<FrameSink> open_frame_sink(const std::string& path, int width, int height, int fps);
+
+class AsyncFrameWriter {
+ public:
+  AsyncFrameWriter(std::unique_ptr<FrameSink> sink, int width, int height, int slots = 3);
+  ~AsyncFrameWriter();
+  // A slot to read the frame into; waits while every slot is still queued.
+  uint8_t* acquire();
+  void submit();
+  // Waits for every queued frame, closes the sink; rethrows a write error.
+  void finish();
+
+ private:
+  void run();
+  std::unique_ptr<FrameSink> sink_;
+  std::vector<std::vector<uint8_t>> slots_;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  size_t head_ = 0, count_ = 0;  // queued slots: [head_, head_ + count_)
+  bool stop_ = false;
+  bool finished_ = false;
+  std::exception_ptr error_;
+  std::thread thread_;
+};
+
+}  // namespace candela

@@ -1,0 +1,14 @@
+// Every kind of scene element the runtime knows. Add a kind here.
+#include "elements/test_pattern/test_pattern.h"
+#include "scene/element.h"
+
+namespace candela {
+
+std::span<const ElementKind> element_kinds() {
+  static const ElementKind kKinds[] = {
+      test_pattern_kind(),
+  };
+  return kKinds;
+}
+
+}  // namespace candela

@@ -1,0 +1,67 @@
+#include "elements/test_pattern/test_pattern.h"
+
+#include "gl/program.h"
+#include "gl/texture.h"
+#include "scene/params.h"
+
+namespace candela {
+namespace {
+
+class TestPattern final : public Element {
+ public:
+  explicit TestPattern(int steps_per_period)
+      : steps_per_period_(steps_per_period),
+        program_(Program::from_library("fullscreen.vert", "test_pattern.frag")),
+        vao_(make_vertex_array()),
+        u_resolution_(program_.uniform("u_resolution")),
+        u_phase_(program_.uniform("u_phase")),
+        u_frame_(program_.uniform("u_frame")) {}
+
+  void update(const StepContext& s) override {
+    phase_ = test_pattern_phase(s.step, steps_per_period_);
+  }
+
+  void draw(const FrameContext& f, DrawPass pass) override {
+    if (pass != DrawPass::kBackground) return;
+    program_.use();
+    glUniform2f(u_resolution_, static_cast<float>(f.width), static_cast<float>(f.height));
+    glUniform1f(u_phase_, static_cast<float>(phase_));
+    glUniform1i(u_frame_, static_cast<int>(f.frame % 100000000));
+    glBindVertexArray(vao_.get());
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+
+ private:
+  int steps_per_period_;
+  double phase_ = 0;
+  Program program_;
+  VertexArray vao_;
+  GLint u_resolution_, u_phase_, u_frame_;
+};
+
+class TestPatternSpec final : public ElementSpec {
+ public:
+  std::unique_ptr<Element> create(const SceneContext&) const override {
+    return std::make_unique<TestPattern>(steps_per_period);
+  }
+  int steps_per_period = 120;
+};
+
+std::unique_ptr<ElementSpec> parse(ParamReader& r) {
+  auto spec = std::make_unique<TestPatternSpec>();
+  spec->steps_per_period = static_cast<int>(r.integer("period_steps", 120, 2, 1000000));
+  r.finish();
+  return spec;
+}
+
+}  // namespace
+
+const ElementKind& test_pattern_kind() {
+  static const ElementKind kind{"test_pattern", "colour bars, frame counter and a moving marker",
+                                parse};
+  return kind;
+}
+
+}  // namespace candela

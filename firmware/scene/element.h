@@ -1,0 +1,76 @@
+// The scene-element interface. An element is one thing in the scene (a
+// candle, an eigen-flame, a Perlin fire, the test pattern). It is parsed and
+// validated without GL (ElementSpec, used by --check), then created with GL.
+// update() runs on the fixed animation step; draw() issues GL calls only.
+// Neither may allocate once running.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "core/fixed.h"
+#include "gl/math.h"
+
+namespace candela {
+
+class WindField;
+class ParamReader;
+
+// Elements draw in passes, so that (as the candle paper asks) every glow is
+// drawn before any candle body or flame.
+enum class DrawPass { kBackground, kGlow, kBody, kFlame, kOverlay };
+inline constexpr DrawPass kAllPasses[] = {DrawPass::kBackground, DrawPass::kGlow, DrawPass::kBody,
+                                          DrawPass::kFlame, DrawPass::kOverlay};
+
+struct StepContext {
+  uint64_t step = 0;  // steps since start
+  Fixed dt;           // seconds per step
+  Fixed time;         // seconds since start
+  const WindField* wind = nullptr;
+};
+
+struct FrameContext {
+  int width = 0, height = 0;
+  uint64_t frame = 0;  // frames presented so far
+  uint64_t step = 0;   // the animation step being shown
+  Mat4 view, projection, view_projection;
+  Vec3 camera_position;
+};
+
+struct SceneContext {
+  std::string scene_file;  // for messages and relative paths
+  uint64_t seed = 1;       // this element's seed (scene seed mixed with its index, or its own)
+};
+
+class Element {
+ public:
+  virtual ~Element() = default;
+  virtual void update(const StepContext& step) = 0;
+  virtual void draw(const FrameContext& frame, DrawPass pass) = 0;
+};
+
+class ElementSpec {
+ public:
+  virtual ~ElementSpec() = default;
+  // Needs a current GL context. Throws on failure; the scene logs it and
+  // carries on without (or with a fallback for) this element.
+  virtual std::unique_ptr<Element> create(const SceneContext& context) const = 0;
+  Vec3 position;
+  uint64_t seed = 0;  // 0: derived from the scene's seed
+};
+
+struct ElementKind {
+  std::string_view name;
+  std::string_view summary;
+  // Reads and validates this kind's parameters (position and seed are read
+  // by the scene); calls reader.finish() itself.
+  std::unique_ptr<ElementSpec> (*parse)(ParamReader& reader);
+};
+
+// Every kind the runtime knows (elements/element_kinds.cpp).
+std::span<const ElementKind> element_kinds();
+
+}  // namespace candela

@@ -1,0 +1,56 @@
+#include "scene/scene.h"
+
+#include "core/log.h"
+#include "gl/gles.h"
+
+namespace candela {
+namespace {
+// SplitMix64 step: spreads one scene seed into independent element seeds.
+uint64_t mix_seed(uint64_t seed, uint64_t index) {
+  uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (index + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+}  // namespace
+
+Scene::Scene(const SceneDesc& desc, uint64_t seed_override)
+    : background_(desc.background), camera_(desc.camera), wind_(desc.wind) {
+  const uint64_t seed = seed_override ? seed_override : desc.seed;
+  for (size_t i = 0; i < desc.elements.size(); ++i) {
+    const auto& e = desc.elements[i];
+    SceneContext ctx;
+    ctx.scene_file = desc.file;
+    ctx.seed = e.spec->seed ? e.spec->seed : mix_seed(seed, i);
+    try {
+      elements_.push_back(e.spec->create(ctx));
+    } catch (const std::exception& ex) {
+      ++failed_;
+      LOG_ERROR("%s: %s: %s; left out of the scene", desc.file.c_str(), e.name.c_str(), ex.what());
+    }
+  }
+}
+
+void Scene::update(const StepContext& step) {
+  wind_.update(step);
+  StepContext s = step;
+  s.wind = &wind_;
+  for (auto& e : elements_) e->update(s);
+}
+
+void Scene::draw(FrameContext& frame) {
+  const float aspect = frame.height > 0 ? static_cast<float>(frame.width) / frame.height : 1.0f;
+  frame.view = Mat4::look_at(camera_.position, camera_.target, {0, 1, 0});
+  frame.projection =
+      Mat4::perspective(camera_.fov_deg * 3.14159265f / 180.0f, aspect, 0.02f, 100.0f);
+  frame.view_projection = frame.projection * frame.view;
+  frame.camera_position = camera_.position;
+  glClearColor(background_.x, background_.y, background_.z, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  for (DrawPass pass : kAllPasses)
+    for (auto& e : elements_) e->draw(frame, pass);
+}
+
+void Scene::on_key(Key key) { wind_.on_key(key); }
+
+}  // namespace candela

@@ -1,0 +1,37 @@
+// The running scene: elements made from a SceneDesc, the wind field they
+// share, and the camera. The frame loop calls update() per fixed step and
+// draw() per frame; keys become wind events.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "display/display.h"
+#include "scene/element.h"
+#include "scene/scene_file.h"
+#include "wind/wind_field.h"
+
+namespace candela {
+
+class Scene : public DisplayEvents {
+ public:
+  // Needs a current GL context. An element that fails to create is logged and
+  // left out: the display never goes dark because of one bad element.
+  Scene(const SceneDesc& desc, uint64_t seed_override = 0);
+  void update(const StepContext& step);
+  void draw(FrameContext& frame);
+  void on_key(Key key) override;
+
+  WindField& wind() { return wind_; }
+  size_t element_count() const { return elements_.size(); }
+  size_t failed_elements() const { return failed_; }
+
+ private:
+  Vec3 background_;
+  CameraDesc camera_;
+  WindField wind_;
+  std::vector<std::unique_ptr<Element>> elements_;
+  size_t failed_ = 0;
+};
+
+}  // namespace candela
