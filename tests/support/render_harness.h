@@ -1,0 +1,59 @@
+// Renders a scene headless, frame by frame, and reads back pixels, for
+// tests that check what a viewer would see.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/frame_loop.h"
+#include "display/display.h"
+#include "scene/scene.h"
+#include "scene/scene_file.h"
+
+namespace candela::test {
+
+struct Rgba {
+  int r, g, b, a;
+};
+
+// A frame read back, rows top to bottom.
+struct Frame {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;
+  Rgba at(int x, int y) const {
+    const uint8_t* p = &rgba[(static_cast<size_t>(y) * width + x) * 4];
+    return {p[0], p[1], p[2], p[3]};
+  }
+  double luma(int x, int y) const {
+    const Rgba c = at(x, y);
+    return 0.299 * c.r + 0.587 * c.g + 0.114 * c.b;
+  }
+  void save_png(const std::string& path) const;
+};
+
+class RenderHarness {
+ public:
+  // The scene is TOML text (or a SceneDesc); seed 0 = the scene's own.
+  RenderHarness(const std::string& scene_toml, int width, int height, uint64_t seed = 0);
+  RenderHarness(SceneDesc desc, int width, int height, uint64_t seed = 0);
+  ~RenderHarness();
+
+  // Runs `frames` frames in lockstep (1 step per frame at 60 steps/s).
+  void run(uint64_t frames);
+  // Reads the last presented frame.
+  Frame read() const;
+  uint64_t frames() const { return frames_; }
+  Scene& scene() { return *scene_; }
+  Display& display() { return *display_; }
+
+ private:
+  SceneDesc desc_;
+  std::unique_ptr<Display> display_;
+  std::unique_ptr<Scene> scene_;
+  uint64_t frames_ = 0;
+  uint64_t seed_;
+};
+
+}  // namespace candela::test
