@@ -9,16 +9,21 @@
 
 namespace candela {
 
+#ifdef CANDELA_SANITIZE
+void pin_gl_drivers();  // sanitizer_pins.cpp
+#endif
+
 std::string egl_error_string(EGLint e) {
   switch (e) {
 #define C(x) \
   case x:    \
     return #x;
     C(EGL_SUCCESS)
-        C(EGL_NOT_INITIALIZED) C(EGL_BAD_ACCESS) C(EGL_BAD_ALLOC) C(EGL_BAD_ATTRIBUTE)
-            C(EGL_BAD_CONTEXT) C(EGL_BAD_CONFIG) C(EGL_BAD_CURRENT_SURFACE) C(EGL_BAD_DISPLAY)
-                C(EGL_BAD_SURFACE) C(EGL_BAD_MATCH) C(EGL_BAD_PARAMETER) C(EGL_BAD_NATIVE_PIXMAP)
-                    C(EGL_BAD_NATIVE_WINDOW) C(EGL_CONTEXT_LOST)
+    C(EGL_NOT_INITIALIZED)
+        C(EGL_BAD_ACCESS) C(EGL_BAD_ALLOC) C(EGL_BAD_ATTRIBUTE) C(EGL_BAD_CONTEXT) C(EGL_BAD_CONFIG)
+            C(EGL_BAD_CURRENT_SURFACE) C(EGL_BAD_DISPLAY) C(EGL_BAD_SURFACE) C(EGL_BAD_MATCH)
+                C(EGL_BAD_PARAMETER) C(EGL_BAD_NATIVE_PIXMAP) C(EGL_BAD_NATIVE_WINDOW)
+                    C(EGL_CONTEXT_LOST)
 #undef C
                         default : return "EGL error " +
                                   std::to_string(e);
@@ -40,6 +45,9 @@ EglContext::EglContext(EGLDisplay display, EGLint surface_type, EGLint native_vi
   EGLint major = 0, minor = 0;
   if (!eglInitialize(display_, &major, &minor))
     throw RuntimeError("EGL: eglInitialize failed: " + egl_error_string(eglGetError()));
+#ifdef CANDELA_SANITIZE
+  pin_gl_drivers();
+#endif
   if (!eglBindAPI(EGL_OPENGL_ES_API)) {
     eglTerminate(display_);
     throw RuntimeError("EGL: no OpenGL ES API");

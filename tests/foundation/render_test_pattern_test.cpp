@@ -31,7 +31,8 @@ TEST(TestPattern, BarsHaveTheirColoursInOrder) {
                               {255, 0, 255},   {255, 0, 0},   {0, 0, 255},   {0, 0, 0}};
   for (int i = 0; i < 8; ++i) {
     SCOPED_TRACE(i);
-    expect_near(f.at(kW * (2 * i + 1) / 16, kH / 3), expected[i][0], expected[i][1], expected[i][2]);
+    expect_near(f.at(kW * (2 * i + 1) / 16, kH / 3), expected[i][0], expected[i][1],
+                expected[i][2]);
   }
 }
 

@@ -7,15 +7,20 @@
 
 namespace candela::test {
 
-void Frame::save_png(const std::string& path) const { write_png(path, width, height, 4, rgba.data()); }
+void Frame::save_png(const std::string& path) const {
+  write_png(path, width, height, 4, rgba.data());
+}
 
-RenderHarness::RenderHarness(const std::string& scene_toml, int width, int height, uint64_t seed)
-    : RenderHarness(load_scene_text(scene_toml, "<test scene>"), width, height, seed) {}
+RenderHarness::RenderHarness(const std::string& scene_toml, int width, int height, uint64_t seed,
+                             const char* display)
+    : RenderHarness(load_scene_text(scene_toml, "<test scene>"), width, height, seed, display) {}
 
-RenderHarness::RenderHarness(SceneDesc desc, int width, int height, uint64_t seed)
+RenderHarness::RenderHarness(SceneDesc desc, int width, int height, uint64_t seed,
+                             const char* display)
     : desc_(std::move(desc)), seed_(seed) {
   DisplayOptions o;
-  o.kind = "headless";
+  o.kind = display;
+  o.vsync = false;
   o.width = width;
   o.height = height;
   display_ = open_display(o);
@@ -39,10 +44,17 @@ void RenderHarness::run(uint64_t frames) {
   run_frame_loop(*display_, *scene_, s);
 }
 
-Frame RenderHarness::read() const {
+Frame RenderHarness::read() {
   Frame f;
   f.width = display_->width();
   f.height = display_->height();
+  FrameContext ctx;
+  ctx.width = f.width;
+  ctx.height = f.height;
+  ctx.frame = frames_ > 0 ? frames_ - 1 : 0;
+  ctx.step = ctx.frame;
+  display_->begin_frame();
+  scene_->draw(ctx);
   std::vector<uint8_t> up(static_cast<size_t>(f.width) * f.height * 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, f.width, f.height, GL_RGBA, GL_UNSIGNED_BYTE, up.data());

@@ -36,14 +36,18 @@ struct Frame {
 class RenderHarness {
  public:
   // The scene is TOML text (or a SceneDesc); seed 0 = the scene's own.
-  RenderHarness(const std::string& scene_toml, int width, int height, uint64_t seed = 0);
-  RenderHarness(SceneDesc desc, int width, int height, uint64_t seed = 0);
+  // `display` picks the backend ("headless", or "window" under Xvfb).
+  RenderHarness(const std::string& scene_toml, int width, int height, uint64_t seed = 0,
+                const char* display = "headless");
+  RenderHarness(SceneDesc desc, int width, int height, uint64_t seed = 0,
+                const char* display = "headless");
   ~RenderHarness();
 
   // Runs `frames` frames in lockstep (1 step per frame at 60 steps/s).
   void run(uint64_t frames);
-  // Reads the last presented frame.
-  Frame read() const;
+  // Draws the last presented frame again and reads it back before it is
+  // presented (so it works on every backend, not only headless).
+  Frame read();
   uint64_t frames() const { return frames_; }
   Scene& scene() { return *scene_; }
   Display& display() { return *display_; }
