@@ -158,6 +158,19 @@ ParamReader ParamReader::table(std::string_view key) {
   return ParamReader(n ? n->as_table() : nullptr, file_, key_path(key));
 }
 
+std::vector<ParamReader> ParamReader::table_array(std::string_view key) {
+  const toml::node* n = get(key);
+  std::vector<ParamReader> out;
+  if (!n) return out;
+  const toml::array* a = n->as_array();
+  if (a && a->empty()) return out;
+  if (!a || !a->is_array_of_tables())
+    fail(key, "expected an array of tables ([[" + key_path(key) + "]]), got " + describe(*n));
+  for (size_t i = 0; i < a->size(); ++i)
+    out.emplace_back(a->get(i)->as_table(), file_, key_path(key) + "[" + std::to_string(i) + "]");
+  return out;
+}
+
 void ParamReader::finish() const {
   if (!table_) return;
   for (const auto& [k, v] : *table_) {

@@ -10,6 +10,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/fixed.h"
 #include "gl/math.h"
@@ -41,6 +42,8 @@ class ParamReader {
   std::string path(std::string_view key, std::string_view def = {});
   // A nested table (empty reader if absent). Its keys count as used.
   ParamReader table(std::string_view key);
+  // An array of tables ([[key]]): one reader per entry, prefixed key[i]; empty if absent.
+  std::vector<ParamReader> table_array(std::string_view key);
   // Throws on the first key that no call asked for.
   void finish() const;
 

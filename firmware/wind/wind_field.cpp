@@ -1,23 +1,88 @@
 #include "wind/wind_field.h"
 
+#include "core/log.h"
 #include "scene/element.h"
 #include "scene/params.h"
+#include "wind/fixed_math.h"
+
+namespace candela::noise_tables {
+std::string_view find(std::string_view name);
+}
 
 namespace candela {
 
 WindSpec parse_wind(ParamReader& r) {
   WindSpec s;
   s.direction = r.vec3("direction", s.direction);
+  if (s.direction.x * s.direction.x + s.direction.z * s.direction.z < 1e-6f)
+    r.fail("direction", "expected a direction with an x or z component, e.g. [1, 0, 0]");
   s.speed = r.fixed("speed", 0, 0, 30);
   s.gust_speed = r.fixed("gust_speed", s.gust_speed.to_double(), 0, 30);
   s.gust_seconds = r.fixed("gust_seconds", s.gust_seconds.to_double(), 0.1, 30);
+  s.plane_distance = r.fixed("plane_distance", s.plane_distance.to_double(), 0, 100);
+  s.travel_speed = r.fixed("travel_speed", s.travel_speed.to_double(), 0.05, 100);
+  s.attenuation = r.fixed("attenuation", s.attenuation.to_double(), 0, 100);
+  s.blowout_speed = r.fixed("blowout_speed", s.blowout_speed.to_double(), 0, 100);
+  s.breeze_interval = r.fixed("breeze_interval", 0, 0, 3600);
+  s.breeze_speed = r.fixed("breeze_speed", s.breeze_speed.to_double(), 0, 30);
+  s.breeze_seconds = r.fixed("breeze_seconds", s.breeze_seconds.to_double(), 0.2, 60);
+  s.breeze_spread = r.fixed("breeze_spread", s.breeze_spread.to_double(), 0, 1);
+  s.seed = static_cast<uint64_t>(r.integer("seed", 1, 0, INT64_MAX));
+  s.gust_table = r.path("gust_table");
+  if (!s.gust_table.empty()) {
+    try {
+      NoiseTable::load(s.gust_table);  // validated now, so --check reports it
+    } catch (const std::exception& e) {
+      r.fail("gust_table", std::string("expected a noise table: ") + e.what());
+    }
+  }
   r.finish();
   return s;
 }
 
-WindField::WindField(const WindSpec& spec) : spec_(spec) {
-  const Vec3 d = normalize(spec.direction);
-  steady_ = {Fixed::from_double(d.x) * spec.speed, Fixed::from_double(d.z) * spec.speed};
+namespace {
+NoiseTable load_gust_table(const WindSpec& spec) {
+  if (!spec.gust_table.empty()) {
+    try {
+      return NoiseTable::load(spec.gust_table);
+    } catch (const std::exception& e) {
+      LOG_ERROR("wind: %s; using the built-in gust table", e.what());
+    }
+  }
+  return NoiseTable::parse(noise_tables::find("gust_b24.cnoise"), "<built-in gust_b24.cnoise>");
+}
+}  // namespace
+
+WindField::WindField(const WindSpec& spec)
+    : spec_(spec), gust_table_(load_gust_table(spec)), rng_(spec.seed, 0x77696e64) {
+  const Fixed dx = Fixed::from_double(spec.direction.x), dz = Fixed::from_double(spec.direction.z);
+  const Fixed len = fixed_hypot(dx, dz);
+  dir_x_ = len.raw > 0 ? dx / len : Fixed::from_int(1);
+  dir_z_ = len.raw > 0 ? dz / len : Fixed{};
+  steady_ = {dir_x_ * spec.speed, dir_z_ * spec.speed};
+  history_.fill(steady_);
+  inv_travel_speed_ = Fixed::from_int(1) / spec.travel_speed;
+}
+
+void WindField::start_gust(Fixed x, Fixed z, Fixed length_seconds) {
+  const Fixed peak = fixed_hypot(x, z);
+  if (peak.raw <= 0) return;
+  // Reuse an idle slot, else replace the oldest gust.
+  Gust* slot = &gusts_[0];
+  for (auto& g : gusts_) {
+    if (!g.active) {
+      slot = &g;
+      break;
+    }
+    if (g.start < slot->start) slot = &g;
+  }
+  slot->dx = x / peak;
+  slot->dz = z / peak;
+  slot->peak = peak;
+  slot->start = now_;
+  slot->length_steps = (length_seconds * steps_per_second_).floor_int();
+  if (slot->length_steps < 2) slot->length_steps = 2;
+  slot->active = true;
 }
 
 void WindField::push(const WindEvent& e) {
@@ -27,10 +92,7 @@ void WindField::push(const WindEvent& e) {
       break;
     case WindEvent::Type::kGust:
     case WindEvent::Type::kBlowOut:
-      gust_dir_ = {e.x, e.z};
-      gust_age_ = Fixed{};
-      gust_length_ = spec_.gust_seconds;
-      gust_active_ = true;
+      start_gust(e.x, e.z, spec_.gust_seconds);
       break;
   }
 }
@@ -38,23 +100,24 @@ void WindField::push(const WindEvent& e) {
 void WindField::on_key(Key key) {
   const Fixed g = spec_.gust_speed;
   switch (key) {
-    case Key::kLeft:
+    case Key::kLeft:  // from the left: blows right
       push({WindEvent::Type::kGust, g, {}});
-      break;  // from the left: blows right
+      break;
     case Key::kRight:
       push({WindEvent::Type::kGust, -g, {}});
       break;
-    case Key::kUp:
+    case Key::kUp:  // from behind the candles: toward the viewer
       push({WindEvent::Type::kGust, {}, g});
       break;
     case Key::kDown:
       push({WindEvent::Type::kGust, {}, -g});
       break;
-    case Key::kSpace:
+    case Key::kSpace:  // toward the viewer
       push({WindEvent::Type::kGust, {}, g});
-      break;  // toward the viewer
-    case Key::kBlowOut:
-      push({WindEvent::Type::kBlowOut, g * 4, {}});
+      break;
+    case Key::kBlowOut:  // someone blowing from the front-left
+      push({WindEvent::Type::kBlowOut, spec_.blowout_speed * Fixed::from_ratio(3, 5),
+            -spec_.blowout_speed * Fixed::from_ratio(4, 5)});
       break;
     default:
       break;
@@ -62,25 +125,77 @@ void WindField::on_key(Key key) {
 }
 
 void WindField::update(const StepContext& step) {
-  if (!gust_active_) {
-    current_gust_ = {};
-    return;
+  if (step.dt.raw > 0) steps_per_second_ = (Fixed::kOne + step.dt.raw / 2) / step.dt.raw;
+  if (now_ == 0 && spec_.breeze_interval.raw > 0)
+    next_breeze_ = static_cast<uint64_t>(
+        (spec_.breeze_interval * rng_.unit() * steps_per_second_).floor_int());
+  ++now_;
+  history_[now_ % kHistorySteps] = steady_;
+  for (auto& g : gusts_) {
+    // A gust is over once its tail has passed the farthest point it can
+    // reach within the delay history.
+    if (g.active && now_ - g.start > static_cast<uint64_t>(g.length_steps) +
+                                         static_cast<uint64_t>(kHistorySteps))
+      g.active = false;
   }
-  gust_age_ += step.dt;
-  if (gust_age_ >= gust_length_) {
-    gust_active_ = false;
-    current_gust_ = {};
-    return;
+  if (spec_.breeze_interval.raw > 0 && now_ >= next_breeze_) {
+    // Direction scattered sideways around the scene's wind direction.
+    const Fixed side = (rng_.unit() * 2 - Fixed::from_int(1)) * spec_.breeze_spread;
+    Fixed bx = dir_x_ - dir_z_ * side, bz = dir_z_ + dir_x_ * side;
+    const Fixed len = fixed_hypot(bx, bz);
+    const Fixed strength =
+        spec_.breeze_speed * (Fixed::from_ratio(3, 5) + rng_.unit() * Fixed::from_ratio(2, 5));
+    bx = bx / len * strength;
+    bz = bz / len * strength;
+    start_gust(
+        bx, bz,
+        spec_.breeze_seconds * (Fixed::from_ratio(7, 10) + rng_.unit() * Fixed::from_ratio(3, 5)));
+    const Fixed wait = spec_.breeze_interval * (Fixed::from_ratio(1, 2) + rng_.unit());
+    next_breeze_ = now_ + static_cast<uint64_t>((wait * steps_per_second_).floor_int()) + 1;
   }
-  // A triangle envelope: rises for the first quarter, falls for the rest.
-  const Fixed t = gust_age_ / gust_length_;
-  const Fixed q = Fixed::from_ratio(1, 4);
-  const Fixed env = t < q ? t / q : (Fixed::from_int(1) - t) / (Fixed::from_int(1) - q);
-  current_gust_ = {gust_dir_.x * env, gust_dir_.z * env};
 }
 
-WindSample WindField::sample(Vec3) const {
-  return {steady_.x + current_gust_.x, steady_.z + current_gust_.z};
+Fixed WindField::distance_from_plane(WindPosition p, Fixed dx, Fixed dz) const {
+  const Fixed d = spec_.plane_distance + p.x * dx + p.z * dz;
+  return d.raw < 0 ? Fixed{} : d;
+}
+
+Fixed WindField::attenuate(Fixed distance) const {
+  return Fixed::from_int(1) / (Fixed::from_int(1) + spec_.attenuation * distance);
+}
+
+Fixed WindField::delay_seconds(WindPosition p, Fixed dx, Fixed dz) const {
+  return distance_from_plane(p, dx, dz) * inv_travel_speed_;
+}
+
+int WindField::active_gusts() const {
+  int n = 0;
+  for (const auto& g : gusts_) n += g.active;
+  return n;
+}
+
+WindSample WindField::sample(WindPosition p) const {
+  // Steady wind: what S emitted `delay` steps ago.
+  const Fixed d0 = distance_from_plane(p, dir_x_, dir_z_);
+  int32_t delay = (d0 * inv_travel_speed_ * steps_per_second_).floor_int();
+  if (delay > kHistorySteps - 1) delay = kHistorySteps - 1;
+  const uint64_t at = now_ > static_cast<uint64_t>(delay) ? now_ - delay : 0;
+  const WindSample& s = history_[at % kHistorySteps];
+  const Fixed a0 = attenuate(d0);
+  WindSample w{s.x * a0, s.z * a0};
+  for (const auto& g : gusts_) {
+    if (!g.active) continue;
+    const Fixed d = distance_from_plane(p, g.dx, g.dz);
+    // Age of the gust here, in steps (Q16): it left S at g.start.
+    const int64_t age_q16 = (static_cast<int64_t>(now_ - g.start) << 16) -
+                            static_cast<int64_t>((d * inv_travel_speed_).raw) * steps_per_second_;
+    if (age_q16 < 0 || age_q16 >= (static_cast<int64_t>(g.length_steps) << 16)) continue;
+    const auto pos = static_cast<uint32_t>(age_q16 * gust_table_.length() / g.length_steps);
+    const Fixed strength = g.peak * gust_table_.at(pos) * attenuate(d);
+    w.x += g.dx * strength;
+    w.z += g.dz * strength;
+  }
+  return w;
 }
 
 }  // namespace candela

@@ -1,0 +1,161 @@
+#include "elements/candle/candle_params.h"
+
+#include <cmath>
+#include <mutex>
+
+#include "core/error.h"
+#include "scene/params.h"
+
+namespace candela::noise_tables {
+std::string_view find(std::string_view name);
+}
+
+namespace candela {
+namespace {
+
+constexpr double kBuiltinBetas[] = {1.0, 1.4, 2.0, 2.4, 2.8};
+
+struct ChannelInfo {
+  const char* table;  // sub-table: calm or breeze
+  const char* name;   // key prefix
+  double beta;        // the paper's beta
+  double rate;        // samples per second: a little different per channel so
+                      // the candle's channels never fall into step
+};
+// Betas: Table 1; Table 2 gives ranges (2.0-2.8, 1.0-1.8): their middles.
+constexpr ChannelInfo kChannels[kNoiseChannels] = {
+    {"calm", "sway", 2.8, 256},         {"calm", "tilt", 2.8, 241},
+    {"calm", "stretch", 2.0, 229},      {"calm", "width", 2.8, 271},
+    {"breeze", "lean", 2.4, 397},       {"breeze", "tilt", 2.4, 383},
+    {"breeze", "stretch", 1.4, 331},    {"breeze", "width", 2.4, 367},
+    {"breeze", "turbulence", 2.0, 409},
+};
+
+std::string beta_choices() {
+  std::string s;
+  for (double b : kBuiltinBetas) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "%.1f", b);
+    s += (s.empty() ? "" : ", ") + std::string(buf);
+  }
+  return s;
+}
+
+void read_noise(ParamReader& r, int channel, NoiseSource& n) {
+  const std::string name = kChannels[channel].name;
+  n.rate = r.fixed(name + "_rate", n.rate.to_double(), 1, 8192);
+  const std::string beta_key = name + "_beta";
+  const std::string table_key = name + "_table";
+  if (r.has(table_key)) {
+    const std::string path = r.path(table_key);
+    try {
+      n.table = std::make_shared<const NoiseTable>(NoiseTable::load(path));
+    } catch (const std::exception& e) {
+      r.fail(table_key, std::string("expected a noise table (candela-tool noise): ") + e.what());
+    }
+    n.beta = n.table->info().beta_milli / 1000.0;
+  }
+  if (r.has(beta_key)) {
+    if (r.has(table_key))
+      r.fail(beta_key, "give either " + beta_key + " or " + table_key + ", not both");
+    const double b = r.number(beta_key, n.beta, 0, 10);
+    if (!is_builtin_beta(b))
+      r.fail(beta_key, "expected one of the built-in betas " + beta_choices() +
+                           " (or name your own table with " + table_key + ")");
+    n.beta = b;
+    n.table.reset();
+  }
+}
+
+}  // namespace
+
+bool is_builtin_beta(double beta) {
+  for (double b : kBuiltinBetas)
+    if (std::abs(b - beta) < 1e-9) return true;
+  return false;
+}
+
+const NoiseTable& builtin_noise_table(double beta, int variant) {
+  static std::once_flag once;
+  static NoiseTable tables[5][3];
+  std::call_once(once, [] {
+    for (int i = 0; i < 5; ++i)
+      for (int v = 0; v < 3; ++v) {
+        char name[32];
+        std::snprintf(name, sizeof name, "b%02d_%d.cnoise",
+                      static_cast<int>(std::lround(kBuiltinBetas[i] * 10)), v);
+        tables[i][v] =
+            NoiseTable::parse(noise_tables::find(name), std::string("<built-in ") + name + ">");
+      }
+  });
+  int best = 0;
+  for (int i = 1; i < 5; ++i)
+    if (std::abs(kBuiltinBetas[i] - beta) < std::abs(kBuiltinBetas[best] - beta)) best = i;
+  return tables[best][variant % 3];
+}
+
+CandleParams::CandleParams() {
+  for (int c = 0; c < kNoiseChannels; ++c) {
+    noise[c].beta = kChannels[c].beta;
+    noise[c].rate = Fixed::from_int(static_cast<int32_t>(kChannels[c].rate));
+  }
+}
+
+CandleParams parse_candle_params(ParamReader& r, const CandleParams& base) {
+  CandleParams p = base;
+  auto num = [](ParamReader& t, const char* key, Fixed def, double lo, double hi) {
+    return t.fixed(key, def.to_double(), lo, hi);
+  };
+  {
+    ParamReader c = r.table("calm");
+    p.sway_left = num(c, "sway_left", p.sway_left, -90, 0);
+    p.sway_right = num(c, "sway_right", p.sway_right, 0, 90);
+    p.tilt_front = num(c, "tilt_front", p.tilt_front, -90, 0);
+    p.tilt_rear = num(c, "tilt_rear", p.tilt_rear, 0, 90);
+    p.calm_stretch_low = num(c, "stretch_low", p.calm_stretch_low, 0.01, 4);
+    p.calm_stretch_high = num(c, "stretch_high", p.calm_stretch_high, 0.01, 4);
+    p.calm_width_thin = num(c, "width_thin", p.calm_width_thin, 0.01, 4);
+    p.calm_width_thick = num(c, "width_thick", p.calm_width_thick, 0.01, 4);
+    for (int ch = kCalmSway; ch <= kCalmWidth; ++ch) read_noise(c, ch, p.noise[ch]);
+    c.finish();
+  }
+  {
+    ParamReader b = r.table("breeze");
+    p.lean = num(b, "lean", p.lean, 0, 89);
+    p.breeze_tilt = num(b, "tilt", p.breeze_tilt, 0, 89);
+    p.breeze_stretch_low = num(b, "stretch_low", p.breeze_stretch_low, 0.01, 4);
+    p.breeze_stretch_high = num(b, "stretch_high", p.breeze_stretch_high, 0.01, 4);
+    p.breeze_width_thin = num(b, "width_thin", p.breeze_width_thin, 0.01, 4);
+    p.breeze_width_thick = num(b, "width_thick", p.breeze_width_thick, 0.01, 4);
+    p.full_speed = num(b, "full_speed", p.full_speed, 0.05, 30);
+    p.flutter = num(b, "flutter", p.flutter, 0, 1);
+    p.turbulence = num(b, "turbulence", p.turbulence, 0, 0.5);
+    p.turbulence_lag = num(b, "turbulence_lag", p.turbulence_lag, 0, 2);
+    for (int ch = kBreezeLean; ch <= kTurbulence; ++ch) read_noise(b, ch, p.noise[ch]);
+    b.finish();
+  }
+  {
+    ParamReader w = r.table("wick");
+    p.stick_angle = num(w, "stick_angle", p.stick_angle, 1, 89);
+    p.wick_angle = num(w, "angle", p.wick_angle, -45, 45);
+    p.stick_depth = num(w, "stick_depth", p.stick_depth, 0, 0.5);
+    w.finish();
+  }
+  {
+    ParamReader q = r.table("pendulum");
+    p.pendulum_hz = num(q, "frequency", p.pendulum_hz, 0.1, 10);
+    p.pendulum_damping = num(q, "damping", p.pendulum_damping, 0.02, 2);
+    q.finish();
+  }
+  {
+    ParamReader e = r.table("extinguish");
+    p.extinguish_speed = num(e, "speed", p.extinguish_speed, 0.1, 100);
+    p.relight_seconds = num(e, "relight_seconds", p.relight_seconds, 0.1, 3600);
+    p.smoke_seconds = num(e, "smoke_seconds", p.smoke_seconds, 0, 30);
+    p.regrow_seconds = num(e, "regrow_seconds", p.regrow_seconds, 0.05, 30);
+    e.finish();
+  }
+  return p;
+}
+
+}  // namespace candela

@@ -1,0 +1,549 @@
+#include "elements/candle/candles.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "core/random.h"
+#include "elements/candle/flame_still.h"
+#include "elements/candle/flame_warp.h"
+#include "gl/program.h"
+#include "gl/texture.h"
+#include "scene/params.h"
+
+namespace candela {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+constexpr int kFlameVec4 = 12;  // per flame instance: 10 lines, anchor, pose
+constexpr int kBodyVec4 = 3;
+constexpr int kGlowVec4 = 2;
+constexpr int kSmokeVec4 = 2;
+constexpr float kWickLength = 0.011f;  // metres, scaled by flame_scale
+constexpr float kPoolDepth = 0.15f;    // melt pool depth, in radii
+
+// Reads the per-candle keys shared by [[element.candle]] entries.
+CandleDesc read_candle(ParamReader& r, const CandleDesc& def) {
+  CandleDesc c = def;
+  c.position = r.vec3("position", def.position);
+  c.height = static_cast<float>(r.number("height", def.height, 0.005, 2));
+  c.radius = static_cast<float>(r.number("radius", def.radius, 0.003, 0.5));
+  c.wax = r.color("wax", def.wax);
+  c.flame_scale = static_cast<float>(r.number("flame_scale", def.flame_scale, 0.1, 10));
+  c.seed = static_cast<uint64_t>(r.integer("seed", 0, 0, INT64_MAX));
+  c.params = parse_candle_params(r, def.params);
+  r.finish();
+  return c;
+}
+
+// The wax body: side, melted top with a raised rim and a pool, and the wick.
+// Per vertex: (x, z on a unit circle scaled by the ring's radius, y parameter,
+// kind) and a normal. Kind 0: side (y = fraction of height); 1: top
+// (y = offset in radii from the top edge); 2: wick (y = fraction of its length).
+struct BodyMesh {
+  std::vector<float> vertices;  // 7 floats each
+  std::vector<unsigned short> indices;
+};
+BodyMesh make_body_mesh(int segments) {
+  BodyMesh m;
+  auto ring = [&](float rad, float y, float kind, float nx_scale, float ny) {
+    const auto first = static_cast<unsigned short>(m.vertices.size() / 7);
+    for (int i = 0; i <= segments; ++i) {
+      const float a = 2 * kPi * static_cast<float>(i) / segments;
+      const float c = std::cos(a), s = std::sin(a);
+      m.vertices.insert(m.vertices.end(),
+                        {c * rad, s * rad, y, kind, c * nx_scale, ny, s * nx_scale});
+    }
+    return first;
+  };
+  auto strip = [&](unsigned short a, unsigned short b) {
+    for (int i = 0; i < segments; ++i) {
+      const auto a0 = static_cast<unsigned short>(a + i),
+                 a1 = static_cast<unsigned short>(a + i + 1);
+      const auto b0 = static_cast<unsigned short>(b + i),
+                 b1 = static_cast<unsigned short>(b + i + 1);
+      m.indices.insert(m.indices.end(), {a0, b0, a1, a1, b0, b1});
+    }
+  };
+  // Side: two rings with outward normals.
+  const auto s0 = ring(1.0f, 0.0f, 0, 1, 0);
+  const auto s1 = ring(1.0f, 1.0f, 0, 1, 0);
+  strip(s0, s1);
+  // Top profile (radius factor, offset in radii, normal tilt): rim lip, then
+  // down into the pool.
+  const float profile[][3] = {{1.0f, 0.0f, 0.9f},    {0.96f, 0.05f, 0.2f},
+                              {0.9f, 0.03f, -0.5f},  {0.78f, -0.09f, -0.4f},
+                              {0.5f, -0.14f, -0.1f}, {0.0f, -kPoolDepth, 0.0f}};
+  unsigned short prev = ring(profile[0][0], profile[0][1], 1, profile[0][2], 0.45f);
+  for (size_t k = 1; k < std::size(profile); ++k) {
+    const float t = profile[k][2];
+    const float ny = std::sqrt(std::max(0.0f, 1 - t * t));
+    const auto cur = ring(profile[k][0], profile[k][1], 1, t, ny);
+    strip(prev, cur);
+    prev = cur;
+  }
+  // Wick: a thin cylinder from the pool up.
+  const auto w0 = ring(1.0f, 0.0f, 2, 1, 0);
+  const auto w1 = ring(1.0f, 1.0f, 2, 1, 0);
+  strip(w0, w1);
+  return m;
+}
+
+class Candles final : public Element {
+ public:
+  Candles(const CandlesSpec& spec, const SceneContext& ctx);
+  void update(const StepContext& step) override {
+    dt_seconds_ = step.dt.to_float();
+    for (auto& r : rigs_) r.update(step);
+  }
+  void draw(const FrameContext& frame, DrawPass pass) override;
+
+ private:
+  void prepare(const FrameContext& frame);
+  void set_attrib(GLuint loc, int vec4_index, int stride_vec4, bool instanced);
+
+  std::vector<CandleDesc> desc_;
+  std::vector<CandleRig> rigs_;
+  std::vector<std::shared_ptr<const NoiseTable>> user_tables_;  // keep alive
+  FlameLook look_;
+  float aspect_ = 0.5f;
+  float smoke_seconds_ = 2.5f;
+  float dt_seconds_ = 1.0f / 60;
+
+  Program flame_prog_, glow_prog_, body_prog_, smoke_prog_;
+  Texture still_;
+  Buffer flame_mesh_vbo_, flame_mesh_ibo_, flame_inst_vbo_;
+  Buffer glow_vbo_, body_mesh_vbo_, body_mesh_ibo_, body_inst_vbo_, smoke_vbo_;
+  VertexArray flame_vao_, glow_vao_, body_vao_, smoke_vao_;
+  GLsizei flame_index_count_ = 0, body_index_count_ = 0;
+
+  // Per-frame staging, allocated once.
+  std::vector<float> flame_data_, glow_data_, body_data_, smoke_data_;
+  std::vector<uint32_t> order_;  // candles far to near
+  int flames_ = 0, glows_ = 0, smokes_ = 0;
+  uint64_t prepared_frame_ = UINT64_MAX;
+  Vec3 sorted_for_{1e30f, 0, 0};
+
+  struct FlameUniforms {
+    GLint view_projection, camera, src, weights, aspect, base, still;
+  } fu_{};
+  GLint glow_vp_ = -1, glow_right_ = -1, glow_up_ = -1;
+  GLint body_vp_ = -1, body_camera_ = -1;
+  GLint smoke_vp_ = -1, smoke_right_ = -1, smoke_up_ = -1;
+};
+
+Candles::Candles(const CandlesSpec& spec, const SceneContext& ctx)
+    : desc_(spec.candles), look_(spec.look) {
+  rigs_.reserve(desc_.size());
+  for (size_t i = 0; i < desc_.size(); ++i) {
+    CandleDesc& d = desc_[i];
+    d.position = d.position + spec.position;
+    const uint64_t seed = d.seed ? d.seed : candle_seed(ctx.seed, i);
+    rigs_.emplace_back(d.params, look_.layout, WindPosition::from(d.position), seed);
+  }
+  if (!desc_.empty()) smoke_seconds_ = desc_[0].params.smoke_seconds.to_float();
+
+  // The still: the user's, or the one drawn by code.
+  Image still = look_.still ? *look_.still : make_flame_still(256, look_.layout);
+  aspect_ = static_cast<float>(still.width) / static_cast<float>(still.height);
+  still_ = upload_rgba8(still.width, still.height, still.pixels.data());
+
+  flame_prog_ = Program::from_library("candle_flame.vert", "candle_flame.frag");
+  glow_prog_ = Program::from_library("candle_glow.vert", "candle_glow.frag");
+  body_prog_ = Program::from_library("candle_body.vert", "candle_body.frag");
+  smoke_prog_ = Program::from_library("candle_smoke.vert", "candle_smoke.frag");
+  fu_ = {flame_prog_.uniform("u_view_projection"),
+         flame_prog_.uniform("u_camera"),
+         flame_prog_.uniform("u_src"),
+         flame_prog_.uniform("u_weights"),
+         flame_prog_.uniform("u_aspect"),
+         flame_prog_.uniform("u_base"),
+         flame_prog_.uniform("u_still")};
+  glow_vp_ = glow_prog_.uniform("u_view_projection");
+  glow_right_ = glow_prog_.uniform("u_right");
+  glow_up_ = glow_prog_.uniform("u_up");
+  body_vp_ = body_prog_.uniform("u_view_projection");
+  body_camera_ = body_prog_.uniform("u_camera");
+  smoke_vp_ = smoke_prog_.uniform("u_view_projection");
+  smoke_right_ = smoke_prog_.uniform("u_right");
+  smoke_up_ = smoke_prog_.uniform("u_up");
+
+  const size_t n = desc_.size();
+  flame_data_.assign(n * kFlameVec4 * 4, 0);
+  glow_data_.assign(n * kGlowVec4 * 4, 0);
+  body_data_.assign(n * kBodyVec4 * 4, 0);
+  smoke_data_.assign(n * kSmokeVec4 * 4, 0);
+  order_.resize(n);
+  for (size_t i = 0; i < n; ++i) order_[i] = static_cast<uint32_t>(i);
+
+  // Flame: the mesh over the still (source positions) + per-instance lines.
+  {
+    const auto verts = mesh_vertices(look_.mesh, aspect_);
+    std::vector<float> v;
+    for (const auto& p : verts)
+      v.insert(v.end(), {static_cast<float>(p.x), static_cast<float>(p.y)});
+    const auto idx = mesh_indices(look_.mesh);
+    flame_index_count_ = static_cast<GLsizei>(idx.size());
+    flame_vao_ = make_vertex_array();
+    glBindVertexArray(flame_vao_.get());
+    flame_mesh_vbo_ = make_buffer();
+    glBindBuffer(GL_ARRAY_BUFFER, flame_mesh_vbo_.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(float)), v.data(),
+                 GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+    flame_mesh_ibo_ = make_buffer();
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, flame_mesh_ibo_.get());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * 2), idx.data(),
+                 GL_STATIC_DRAW);
+    flame_inst_vbo_ = make_buffer();
+    glBindBuffer(GL_ARRAY_BUFFER, flame_inst_vbo_.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(flame_data_.size() * sizeof(float)),
+                 nullptr, GL_STREAM_DRAW);
+    for (int k = 0; k < kFlameVec4; ++k)
+      set_attrib(static_cast<GLuint>(1 + k), k, kFlameVec4, true);
+  }
+  // Glow: a camera-facing quad per candle (corners from gl_VertexID).
+  {
+    glow_vao_ = make_vertex_array();
+    glBindVertexArray(glow_vao_.get());
+    glow_vbo_ = make_buffer();
+    glBindBuffer(GL_ARRAY_BUFFER, glow_vbo_.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(glow_data_.size() * sizeof(float)),
+                 nullptr, GL_STREAM_DRAW);
+    for (int k = 0; k < kGlowVec4; ++k) set_attrib(static_cast<GLuint>(k), k, kGlowVec4, true);
+  }
+  // Body: one mesh, per-instance placement, wax colour and flame light.
+  {
+    const BodyMesh m = make_body_mesh(24);
+    body_index_count_ = static_cast<GLsizei>(m.indices.size());
+    body_vao_ = make_vertex_array();
+    glBindVertexArray(body_vao_.get());
+    body_mesh_vbo_ = make_buffer();
+    glBindBuffer(GL_ARRAY_BUFFER, body_mesh_vbo_.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertices.size() * sizeof(float)),
+                 m.vertices.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 7 * sizeof(float), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 7 * sizeof(float),
+                          reinterpret_cast<const void*>(4 * sizeof(float)));
+    body_mesh_ibo_ = make_buffer();
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, body_mesh_ibo_.get());
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.indices.size() * 2),
+                 m.indices.data(), GL_STATIC_DRAW);
+    body_inst_vbo_ = make_buffer();
+    glBindBuffer(GL_ARRAY_BUFFER, body_inst_vbo_.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(body_data_.size() * sizeof(float)),
+                 nullptr, GL_STREAM_DRAW);
+    for (int k = 0; k < kBodyVec4; ++k) set_attrib(static_cast<GLuint>(2 + k), k, kBodyVec4, true);
+  }
+  // Smoke wisps of candles that just went out.
+  {
+    smoke_vao_ = make_vertex_array();
+    glBindVertexArray(smoke_vao_.get());
+    smoke_vbo_ = make_buffer();
+    glBindBuffer(GL_ARRAY_BUFFER, smoke_vbo_.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(smoke_data_.size() * sizeof(float)),
+                 nullptr, GL_STREAM_DRAW);
+    for (int k = 0; k < kSmokeVec4; ++k) set_attrib(static_cast<GLuint>(k), k, kSmokeVec4, true);
+  }
+  glBindVertexArray(0);
+}
+
+void Candles::set_attrib(GLuint loc, int vec4_index, int stride_vec4, bool instanced) {
+  glEnableVertexAttribArray(loc);
+  glVertexAttribPointer(
+      loc, 4, GL_FLOAT, GL_FALSE, stride_vec4 * 4 * static_cast<GLsizei>(sizeof(float)),
+      reinterpret_cast<const void*>(static_cast<uintptr_t>(vec4_index) * 4 * sizeof(float)));
+  if (instanced) glVertexAttribDivisor(loc, 1);
+}
+
+// Fills every instance array for this frame, once, whichever pass comes first.
+void Candles::prepare(const FrameContext& frame) {
+  if (prepared_frame_ == frame.frame) return;
+  prepared_frame_ = frame.frame;
+  const Vec3 cam = frame.camera_position;
+  if (length(cam - sorted_for_) > 1e-4f) {
+    // Far to near, so that blended flames overlap correctly.
+    std::sort(order_.begin(), order_.end(), [&](uint32_t a, uint32_t b) {
+      const float da = length(desc_[a].position - cam), db = length(desc_[b].position - cam);
+      return da != db ? da > db : a < b;
+    });
+    sorted_for_ = cam;
+  }
+  flames_ = glows_ = smokes_ = 0;
+  const float base_y = look_.layout.base.to_float();
+  for (size_t k = 0; k < order_.size(); ++k) {
+    const uint32_t i = order_[k];
+    const CandleDesc& d = desc_[i];
+    const CandleRig& rig = rigs_[i];
+    const CandleState& s = rig.state();
+    const float wick = kWickLength * d.flame_scale;
+    const float top = d.position.y + d.height - kPoolDepth * d.radius;
+    // The flame's base sits a little below the wick's tip.
+    const Vec3 base{d.position.x, top + wick * 0.7f, d.position.z};
+    const float bright = rig.brightness().to_float();
+    const float scale = look_.flame_height * d.flame_scale * s.grow.to_float();
+    const float tilt = s.tilt.to_float();
+    // The billboard's axes, as the vertex shader builds them.
+    Vec3 f{cam.x - base.x, 0, cam.z - base.z};
+    f = length(f) > 1e-5f ? normalize(f) : Vec3{0, 0, 1};
+    const Vec3 right{f.z, 0, -f.x};
+    const Vec3 up = Vec3{0, std::cos(tilt), 0} + f * std::sin(tilt);
+    auto to_world = [&](float bx, float by) {
+      return base + right * (bx * scale) + up * ((by - base_y) * scale);
+    };
+
+    float* b = &body_data_[k * kBodyVec4 * 4];
+    // The flame's light: from the middle of the morphed centre line.
+    const ControlLines& L = rig.lines();
+    const float mx = 0.5f * (L.line[0].px.to_float() + L.line[2].qx.to_float());
+    const float my = 0.5f * (L.line[0].py.to_float() + L.line[2].qy.to_float());
+    const Vec3 centre = s.lit ? to_world(mx, my) : base;
+    const float light = s.lit ? bright : 0.0f;
+    const float body[kBodyVec4 * 4] = {d.position.x, d.position.y, d.position.z, d.radius,
+                                       d.height,     d.wax.x,      d.wax.y,      d.wax.z,
+                                       centre.x,     centre.y,     centre.z,     light};
+    std::copy(std::begin(body), std::end(body), b);
+
+    if (s.lit && scale > 1e-5f) {
+      float* fl = &flame_data_[static_cast<size_t>(flames_++) * kFlameVec4 * 4];
+      for (int l = 0; l < kMaxControlLines; ++l) {
+        const ControlLine& c = L.line[l];
+        fl[l * 4 + 0] = c.px.to_float();
+        fl[l * 4 + 1] = c.py.to_float();
+        fl[l * 4 + 2] = c.qx.to_float();
+        fl[l * 4 + 3] = c.qy.to_float();
+      }
+      const float anchor_pose[8] = {
+          base.x, base.y, base.z, scale, tilt, static_cast<float>(L.count), bright, 0};
+      std::copy(std::begin(anchor_pose), std::end(anchor_pose), fl + kMaxControlLines * 4);
+
+      // Glow: diameter follows the morphed billboard's diagonal (V1's start to
+      // V2's end); it fades with distance; brightness follows the flame's size.
+      const float dx = L.line[3].px.to_float() - L.line[8].qx.to_float();
+      const float dy = L.line[3].py.to_float() - L.line[8].qy.to_float();
+      const float diag = std::sqrt(dx * dx + dy * dy) * scale;
+      const float dist = length(centre - cam);
+      const float fade = 1.0f / (1.0f + (dist / look_.glow_falloff) * (dist / look_.glow_falloff));
+      const float warm = std::clamp(bright, 0.0f, 1.5f);
+      float* g = &glow_data_[static_cast<size_t>(glows_++) * kGlowVec4 * 4];
+      const float glow[kGlowVec4 * 4] = {centre.x,
+                                         centre.y,
+                                         centre.z,
+                                         diag * look_.glow_scale,
+                                         1.0f,
+                                         0.55f + 0.1f * warm,
+                                         0.22f + 0.08f * warm,
+                                         look_.glow_strength * fade * warm};
+      std::copy(std::begin(glow), std::end(glow), g);
+    }
+    const float smoke_age =
+        s.out_steps >= 0 ? static_cast<float>(s.out_steps) * dt_seconds_ : -1.0f;
+    if (smoke_age >= 0 && smoke_age < smoke_seconds_) {
+      float* sm = &smoke_data_[static_cast<size_t>(smokes_++) * kSmokeVec4 * 4];
+      const float smoke[kSmokeVec4 * 4] = {base.x,
+                                           base.y + wick * 0.3f,
+                                           base.z,
+                                           smoke_age / smoke_seconds_,
+                                           d.flame_scale,
+                                           static_cast<float>(i % 97) * 0.137f,
+                                           0,
+                                           0};
+      std::copy(std::begin(smoke), std::end(smoke), sm);
+    }
+  }
+}
+
+void Candles::draw(const FrameContext& frame, DrawPass pass) {
+  if (pass != DrawPass::kGlow && pass != DrawPass::kBody && pass != DrawPass::kFlame) return;
+  if (desc_.empty()) return;
+  prepare(frame);
+  const Mat4& v = frame.view;
+  const Vec3 right{v.at(0, 0), v.at(0, 1), v.at(0, 2)};
+  const Vec3 up{v.at(1, 0), v.at(1, 1), v.at(1, 2)};
+  const Vec3 cam = frame.camera_position;
+  if (pass == DrawPass::kGlow) {
+    if (!glows_) return;
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glow_prog_.use();
+    glUniformMatrix4fv(glow_vp_, 1, GL_FALSE, frame.view_projection.m);
+    glUniform3f(glow_right_, right.x, right.y, right.z);
+    glUniform3f(glow_up_, up.x, up.y, up.z);
+    glBindBuffer(GL_ARRAY_BUFFER, glow_vbo_.get());
+    glBufferSubData(GL_ARRAY_BUFFER, 0,
+                    static_cast<GLsizeiptr>(glows_ * kGlowVec4 * 4 * sizeof(float)),
+                    glow_data_.data());
+    glBindVertexArray(glow_vao_.get());
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, glows_);
+  } else if (pass == DrawPass::kBody) {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    body_prog_.use();
+    glUniformMatrix4fv(body_vp_, 1, GL_FALSE, frame.view_projection.m);
+    glUniform3f(body_camera_, cam.x, cam.y, cam.z);
+    glBindBuffer(GL_ARRAY_BUFFER, body_inst_vbo_.get());
+    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(body_data_.size() * sizeof(float)),
+                    body_data_.data());
+    glBindVertexArray(body_vao_.get());
+    glDrawElementsInstanced(GL_TRIANGLES, body_index_count_, GL_UNSIGNED_SHORT, nullptr,
+                            static_cast<GLsizei>(desc_.size()));
+  } else {
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied
+    if (flames_) {
+      flame_prog_.use();
+      glUniformMatrix4fv(fu_.view_projection, 1, GL_FALSE, frame.view_projection.m);
+      glUniform3f(fu_.camera, cam.x, cam.y, cam.z);
+      const ControlLines src = source_lines(look_.layout);
+      float s[kMaxControlLines * 4];
+      for (int l = 0; l < kMaxControlLines; ++l) {
+        s[l * 4 + 0] = src.line[l].px.to_float();
+        s[l * 4 + 1] = src.line[l].py.to_float();
+        s[l * 4 + 2] = src.line[l].qx.to_float();
+        s[l * 4 + 3] = src.line[l].qy.to_float();
+      }
+      glUniform4fv(fu_.src, kMaxControlLines, s);
+      glUniform3f(fu_.weights, look_.warp_a, look_.warp_b, look_.warp_p);
+      glUniform1f(fu_.aspect, aspect_);
+      glUniform1f(fu_.base, look_.layout.base.to_float());
+      glActiveTexture(GL_TEXTURE0);
+      glBindTexture(GL_TEXTURE_2D, still_.get());
+      glUniform1i(fu_.still, 0);
+      glBindBuffer(GL_ARRAY_BUFFER, flame_inst_vbo_.get());
+      glBufferSubData(GL_ARRAY_BUFFER, 0,
+                      static_cast<GLsizeiptr>(flames_ * kFlameVec4 * 4 * sizeof(float)),
+                      flame_data_.data());
+      glBindVertexArray(flame_vao_.get());
+      glDrawElementsInstanced(GL_TRIANGLES, flame_index_count_, GL_UNSIGNED_SHORT, nullptr,
+                              flames_);
+    }
+    if (smokes_) {
+      glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+      smoke_prog_.use();
+      glUniformMatrix4fv(smoke_vp_, 1, GL_FALSE, frame.view_projection.m);
+      glUniform3f(smoke_right_, right.x, right.y, right.z);
+      glUniform3f(smoke_up_, up.x, up.y, up.z);
+      glBindBuffer(GL_ARRAY_BUFFER, smoke_vbo_.get());
+      glBufferSubData(GL_ARRAY_BUFFER, 0,
+                      static_cast<GLsizeiptr>(smokes_ * kSmokeVec4 * 4 * sizeof(float)),
+                      smoke_data_.data());
+      glBindVertexArray(smoke_vao_.get());
+      glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, smokes_);
+    }
+    glDepthMask(GL_TRUE);
+  }
+  glBindVertexArray(0);
+}
+
+// A deterministic candle layout for [element.grid]: rows of candles with
+// seeded jitter and sizes.
+void add_grid(ParamReader& g, const CandleDesc& def, std::vector<CandleDesc>& out) {
+  const auto count = static_cast<int>(g.integer("count", 9, 1, 4096));
+  const auto columns = static_cast<int>(g.integer("columns", 0, 0, 4096));
+  const float spacing = static_cast<float>(g.number("spacing", 0.12, 0.01, 10));
+  const Vec3 centre = g.vec3("center", {});
+  const float jitter = static_cast<float>(g.number("jitter", 0.3, 0, 1));
+  const float hmin = static_cast<float>(g.number("height_min", 0.07, 0.005, 2));
+  const float hmax = static_cast<float>(g.number("height_max", 0.16, 0.005, 2));
+  const float rmin = static_cast<float>(g.number("radius_min", 0.018, 0.003, 0.5));
+  const float rmax = static_cast<float>(g.number("radius_max", 0.026, 0.003, 0.5));
+  const auto seed = static_cast<uint64_t>(g.integer("seed", 1, 0, INT64_MAX));
+  if (hmax < hmin) g.fail("height_max", "expected height_max >= height_min");
+  if (rmax < rmin) g.fail("radius_max", "expected radius_max >= radius_min");
+  g.finish();
+  const int cols =
+      columns > 0 ? columns : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
+  const int rows = (count + cols - 1) / cols;
+  Pcg32 rng(seed, 0x67726964);
+  for (int i = 0; i < count; ++i) {
+    const int r = i / cols, c = i % cols;
+    CandleDesc d = def;
+    const float jx = (static_cast<float>(rng.unit_double()) - 0.5f) * jitter * spacing;
+    const float jz = (static_cast<float>(rng.unit_double()) - 0.5f) * jitter * spacing;
+    d.position = centre + Vec3{(static_cast<float>(c) - (cols - 1) * 0.5f) * spacing + jx, 0,
+                               (static_cast<float>(r) - (rows - 1) * 0.5f) * spacing + jz};
+    d.height = hmin + (hmax - hmin) * static_cast<float>(rng.unit_double());
+    d.radius = rmin + (rmax - rmin) * static_cast<float>(rng.unit_double());
+    out.push_back(d);
+  }
+}
+
+std::unique_ptr<ElementSpec> parse_kind(ParamReader& r) { return parse_candles(r); }
+
+}  // namespace
+
+uint64_t candle_seed(uint64_t element_seed, size_t index) {
+  uint64_t z = element_seed + 0x9E3779B97F4A7C15ULL * (index + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return (z ^ (z >> 31)) | 1;
+}
+
+std::unique_ptr<CandlesSpec> parse_candles(ParamReader& r) {
+  auto spec = std::make_unique<CandlesSpec>();
+  FlameLook& look = spec->look;
+  look.flame_height = static_cast<float>(r.number("flame_height", look.flame_height, 0.001, 5));
+  look.mesh = static_cast<int>(r.integer("mesh", look.mesh, 1, 64));
+  look.warp_a = static_cast<float>(r.number("warp_a", look.warp_a, 0.001, 1));
+  look.warp_b = static_cast<float>(r.number("warp_b", look.warp_b, 0.5, 2));
+  look.warp_p = static_cast<float>(r.number("warp_p", look.warp_p, 0, 1));
+  look.glow_scale = static_cast<float>(r.number("glow_scale", look.glow_scale, 0, 20));
+  look.glow_strength = static_cast<float>(r.number("glow_strength", look.glow_strength, 0, 10));
+  look.glow_falloff = static_cast<float>(r.number("glow_falloff", look.glow_falloff, 0.01, 1000));
+  const std::string still = r.path("still");
+  look.layout.base = r.fixed("still_base", look.layout.base.to_double(), 0, 0.9);
+  look.layout.tip = r.fixed("still_tip", look.layout.tip.to_double(), 0.1, 1);
+  if (look.layout.tip <= look.layout.base) r.fail("still_tip", "expected still_tip > still_base");
+  double aspect = 0.5;
+  if (!still.empty()) {
+    try {
+      auto img = std::make_shared<Image>(read_png(still, 4));
+      aspect = static_cast<double>(img->width) / img->height;
+      look.still = std::move(img);
+    } catch (const std::exception& e) {
+      r.fail("still", std::string("expected an RGBA PNG flame still: ") + e.what());
+    }
+  }
+  // Half-width of V1/V2 as a fraction of the still's width.
+  look.layout.half_width =
+      Fixed::from_double(r.number("still_half_width", 0.18, 0.01, 0.5) * aspect);
+
+  CandleDesc def;
+  def.params = parse_candle_params(r, CandleParams{});
+  def.height = static_cast<float>(r.number("height", def.height, 0.005, 2));
+  def.radius = static_cast<float>(r.number("radius", def.radius, 0.003, 0.5));
+  def.wax = r.color("wax", def.wax);
+  def.flame_scale = static_cast<float>(r.number("flame_scale", def.flame_scale, 0.1, 10));
+  for (ParamReader& c : r.table_array("candle")) spec->candles.push_back(read_candle(c, def));
+  if (r.has("grid")) {
+    ParamReader g = r.table("grid");
+    add_grid(g, def, spec->candles);
+  }
+  if (spec->candles.empty())
+    r.fail("candle", "expected at least one [[element.candle]] or an [element.grid]");
+  r.finish();
+  return spec;
+}
+
+std::unique_ptr<Element> CandlesSpec::create(const SceneContext& context) const {
+  return std::make_unique<Candles>(*this, context);
+}
+
+const ElementKind& candles_kind() {
+  static const ElementKind kind{
+      "candles", "candles with noise-morphed flames, glows and wax bodies (Ogawa et al.)",
+      parse_kind};
+  return kind;
+}
+
+}  // namespace candela
