@@ -1,0 +1,204 @@
+// Field files, the clip manifest and the `candela-tool simulate` command line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "field_file.h"
+#include "sim_dataset.h"
+
+namespace candela::fluid {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  fs::path d = fs::path(CANDELA_BINARY_DIR) / "test-scratch" / "fluid" / name;
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// Runs a command, returns its exit status and stderr+stdout.
+int run(const std::string& cmd, std::string& output) {
+  output.clear();
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+  if (!p) return -1;
+  char buf[512];
+  while (fgets(buf, sizeof buf, p)) output += buf;
+  const int st = pclose(p);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+FieldFrame sample_frame() {
+  FieldFrame f;
+  f.index = 7;
+  f.time = 0.25;
+  f.t_ambient = 300.0;
+  f.t_reference = 1800.0;
+  f.temperature = Grid2(5, 3);
+  f.u = Grid2(5, 3);
+  f.v = Grid2(5, 3);
+  for (int k = 0; k < 15; ++k) {
+    f.temperature.data[k] = 300.0 + 10.0 * k;
+    f.u.data[k] = 0.5 * k;
+    f.v.data[k] = -0.25 * k;
+  }
+  f.has_velocity = true;
+  return f;
+}
+
+TEST(FieldFile, RoundTripsExactly) {
+  const fs::path d = scratch("roundtrip");
+  const FieldFrame f = sample_frame();
+  write_field_file((d / "a.cfld").string(), f);
+  const FieldFrame g = read_field_file((d / "a.cfld").string());
+  EXPECT_EQ(g.index, 7u);
+  EXPECT_EQ(g.time, 0.25);
+  EXPECT_EQ(g.t_reference, 1800.0);
+  ASSERT_TRUE(g.has_velocity);
+  EXPECT_EQ(g.temperature.width, 5);
+  EXPECT_EQ(g.temperature.height, 3);
+  EXPECT_EQ(g.temperature.data, f.temperature.data);  // all exactly representable in float
+  EXPECT_EQ(g.u.data, f.u.data);
+  EXPECT_EQ(g.v.data, f.v.data);
+  EXPECT_EQ(fs::file_size(d / "a.cfld"), 48u + 15u * 4u * 3u);
+}
+
+// Each defect is reported with the file and the field at fault.
+TEST(FieldFile, DefectsNameTheFileAndField) {
+  const fs::path d = scratch("defects");
+  const std::string path = (d / "b.cfld").string();
+  write_field_file(path, sample_frame());
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  auto expect_error = [&](std::string data, const std::string& field) {
+    {
+      std::ofstream out(path, std::ios::binary | std::ios::trunc);
+      out << data;
+    }
+    try {
+      read_field_file(path);
+      ADD_FAILURE() << "accepted a file with a bad " << field;
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(e.file(), path);
+      EXPECT_NE(e.key().find(field), std::string::npos) << e.what();
+    }
+  };
+  std::string bad = bytes;
+  bad[0] = 'X';
+  expect_error(bad, "magic");
+  bad = bytes;
+  bad[4] = 2;
+  expect_error(bad, "version");
+  expect_error(bytes.substr(0, bytes.size() - 4), "size");
+  expect_error(bytes.substr(0, 20), "header");
+  bad = bytes;
+  for (int k = 0; k < 4; ++k) bad[48 + 4 * 3 + k] = static_cast<char>(0xff);  // a NaN
+  expect_error(bad, "temperature[3]");
+  bad = bytes;
+  bad[20] = 4;
+  expect_error(bad, "flags");
+  EXPECT_THROW(read_field_file((d / "missing.cfld").string()), ConfigError);
+}
+
+TEST(SimManifest, RoundTripsAndRejectsBadValues) {
+  const fs::path d = scratch("manifest");
+  SimManifest m;
+  m.name = "candle \"test\"";
+  m.command = "candela-tool simulate --out 'x y'";
+  m.frames = 12;
+  m.fps = 24.0;
+  m.width = 64;
+  m.height = 80;
+  m.colour = "blackbody";
+  m.has_fields = true;
+  m.grid_width = 32;
+  m.grid_height = 40;
+  m.t_reference = 1700.0;
+  write_manifest(d.string(), m);
+  const SimManifest r = read_manifest(d.string());
+  EXPECT_EQ(r.name, m.name);
+  EXPECT_EQ(r.command, m.command);
+  EXPECT_EQ(r.frames, 12);
+  EXPECT_EQ(r.fps, 24.0);
+  EXPECT_EQ(r.colour, "blackbody");
+  EXPECT_TRUE(r.has_fields);
+  EXPECT_EQ(r.grid_height, 40);
+  EXPECT_EQ(r.t_reference, 1700.0);
+  {
+    std::ofstream out(manifest_path(d.string()), std::ios::trunc);
+    out << "[clip]\nname=\"x\"\nsource=\"s\"\nframes=0\nfps=30.0\nwidth=1\nheight=1\ncolour="
+           "\"gray\"\n";
+  }
+  try {
+    read_manifest(d.string());
+    ADD_FAILURE() << "accepted frames = 0";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "clip.frames");
+  }
+}
+
+TEST(SimulateCommand, ShortFormWritesAConsistentClip) {
+  const fs::path d = scratch("cli") / "clip";
+  std::string out;
+  const int rc = run(std::string(CANDELA_TOOL_EXE) + " simulate --frames 4 --warmup 0.2 --out " +
+                         d.string() + " --grid 24x32",
+                     out);
+  ASSERT_EQ(rc, 0) << out;
+  const SimManifest m = read_manifest(d.string());
+  EXPECT_EQ(m.frames, 4);
+  EXPECT_EQ(m.name, "clip");
+  EXPECT_EQ(m.source, "candela-tool simulate");
+  EXPECT_EQ(m.width, 24);
+  EXPECT_EQ(m.height, 32);
+  for (int k = 0; k < 4; ++k) {
+    const Image img = read_png(frame_path(d.string(), k));
+    EXPECT_EQ(img.width, 24);
+    EXPECT_EQ(img.height, 32);
+    const FieldFrame f = read_field_file(field_path(d.string(), k));
+    EXPECT_EQ(f.index, static_cast<uint32_t>(k));
+    ASSERT_TRUE(f.has_velocity);
+    // The frame shows the field: the hottest cell's pixel has its normalised
+    // temperature as gray level (fields run bottom-up, images top-down).
+    int best = 0;
+    for (int i = 1; i < 24 * 32; ++i)
+      if (f.temperature.data[i] > f.temperature.data[best]) best = i;
+    const int bx = best % 24, by = 31 - best / 24;
+    const double s = (f.temperature.data[best] - f.t_ambient) / (f.t_reference - f.t_ambient);
+    EXPECT_GT(s, 0.3) << "the source must have heated the air, frame " << k;
+    EXPECT_NEAR(img.at(bx, by), 255.0 * std::min(s, 1.0), 1.0) << "frame " << k;
+  }
+  EXPECT_FALSE(fs::exists(frame_path(d.string(), 4)));
+}
+
+TEST(SimulateCommand, BadOptionsFailWithAClearMessage) {
+  const std::string exe =
+      std::string(CANDELA_TOOL_EXE) + " simulate --out " + (scratch("bad") / "x").string() + " ";
+  std::string out;
+  EXPECT_EQ(run(exe + "--grid 12by12", out), 2);
+  EXPECT_NE(out.find("--grid"), std::string::npos) << out;
+  EXPECT_EQ(run(exe + "--source x=0.5,q=2", out), 2);
+  EXPECT_NE(out.find("unknown key \"q\""), std::string::npos) << out;
+  EXPECT_EQ(run(exe + "--source x=1.5", out), 2);
+  EXPECT_NE(out.find("source 1 x"), std::string::npos) << out;
+  EXPECT_EQ(run(exe + "--wind 2:10,1:0", out), 2);
+  EXPECT_NE(out.find("--wind"), std::string::npos) << out;
+  EXPECT_EQ(run(exe + "--colour purple", out), 2);
+  EXPECT_NE(out.find("--colour"), std::string::npos) << out;
+  EXPECT_EQ(run(exe + "--frames 0", out), 2);
+  EXPECT_NE(out.find("frames"), std::string::npos) << out;
+  EXPECT_NE(run(std::string(CANDELA_TOOL_EXE) + " simulate --frames 3", out), 0);
+  EXPECT_NE(out.find("--out"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace candela::fluid

@@ -1,0 +1,81 @@
+#include "colour_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace candela::fluid {
+namespace {
+
+double lobe(double x, double mu, double s1, double s2) {
+  const double t = (x - mu) / (x < mu ? s1 : s2);
+  return std::exp(-0.5 * t * t);
+}
+
+uint8_t encode_srgb(double linear) {
+  linear = std::clamp(linear, 0.0, 1.0);
+  const double e =
+      linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+  return static_cast<uint8_t>(std::lround(e * 255.0));
+}
+
+}  // namespace
+
+std::array<double, 3> black_body_rgb(double kelvin) {
+  kelvin = std::max(kelvin, 100.0);
+  double X = 0.0, Y = 0.0, Z = 0.0;
+  for (double nm = 380.0; nm <= 780.0; nm += 5.0) {
+    const double l = nm * 1e-9;
+    // Planck's law up to a constant factor (normalised below).
+    const double planck = 1.0 / (l * l * l * l * l * (std::exp(1.4387769e-2 / (l * kelvin)) - 1.0));
+    const double xb = 1.056 * lobe(nm, 599.8, 37.9, 31.0) + 0.362 * lobe(nm, 442.0, 16.0, 26.7) -
+                      0.065 * lobe(nm, 501.1, 20.4, 26.2);
+    const double yb = 0.821 * lobe(nm, 568.8, 46.9, 40.5) + 0.286 * lobe(nm, 530.9, 16.3, 31.1);
+    const double zb = 1.217 * lobe(nm, 437.0, 11.8, 36.0) + 0.681 * lobe(nm, 459.0, 26.0, 13.8);
+    X += planck * xb;
+    Y += planck * yb;
+    Z += planck * zb;
+  }
+  std::array<double, 3> rgb = {3.2406 * X - 1.5372 * Y - 0.4986 * Z,
+                               -0.9689 * X + 1.8758 * Y + 0.0415 * Z,
+                               0.0557 * X - 0.2040 * Y + 1.0570 * Z};
+  for (double& c : rgb) c = std::max(c, 0.0);
+  const double m = std::max({rgb[0], rgb[1], rgb[2], 1e-300});
+  for (double& c : rgb) c /= m;
+  return rgb;
+}
+
+Image render_temperature(const Grid2& t, double t_ambient, double t_reference, ColourMode mode,
+                         int scale) {
+  Image img;
+  img.width = t.width * scale;
+  img.height = t.height * scale;
+  img.channels = mode == ColourMode::kGray ? 1 : 3;
+  img.pixels.resize(static_cast<size_t>(img.width) * img.height * img.channels);
+  // Black-body chromaticity in 25 K steps between ambient and reference.
+  std::vector<std::array<double, 3>> lut;
+  const double step = 25.0;
+  if (mode == ColourMode::kBlackBody)
+    for (double k = t_ambient; k <= t_reference + step; k += step) lut.push_back(black_body_rgb(k));
+  const double span = t_reference - t_ambient;
+  for (int y = 0; y < img.height; ++y) {
+    uint8_t* row = img.row(y);
+    const double gy = (img.height - 1 - y + 0.5) / scale - 0.5;  // grid rows run bottom-up
+    for (int x = 0; x < img.width; ++x) {
+      const double gx = (x + 0.5) / scale - 0.5;
+      const double kelvin = t.sample(gx, gy);
+      const double s = std::clamp((kelvin - t_ambient) / span, 0.0, 1.0);
+      if (mode == ColourMode::kGray) {
+        row[x] = static_cast<uint8_t>(std::lround(s * 255.0));
+      } else {
+        const size_t k = std::min(
+            lut.size() - 1,
+            static_cast<size_t>((kelvin - t_ambient) < 0 ? 0.0 : (kelvin - t_ambient) / step));
+        for (int c = 0; c < 3; ++c) row[3 * x + c] = encode_srgb(lut[k][c] * s);
+      }
+    }
+  }
+  return img;
+}
+
+}  // namespace candela::fluid

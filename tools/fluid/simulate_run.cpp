@@ -1,0 +1,143 @@
+#include "simulate_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "field_file.h"
+#include "sim_dataset.h"
+
+namespace candela::fluid {
+
+FluidParams preset_params(const std::string& name) {
+  FluidParams p;
+  if (name == "candle") {
+    p.width = 96;
+    p.height = 160;
+    p.buoyancy = 0.08;
+    p.vorticity = 0.8;
+    p.cooling = 6000.0;
+    p.jitter = 0.5;
+    HeatSource s;
+    s.x = 0.5;
+    s.y = 0.1;
+    s.rx = 0.07;
+    s.ry = 0.1;
+    s.rate = 40000.0;
+    s.flicker = 0.4;
+    s.flicker_hz = 5.0;
+    p.sources = {s};
+    // An occasional breeze from the left and back, so the clip has both calm
+    // and leaning flames.
+    p.wind = {{0.0, 0.0}, {6.0, 0.0}, {7.0, 25.0}, {8.5, 25.0}, {9.5, 0.0}};
+    p.wind_drag = 1.5;
+  } else if (name == "fireplace") {
+    p.width = 192;
+    p.height = 128;
+    p.buoyancy = 0.1;
+    p.vorticity = 2.5;
+    p.cooling = 8000.0;
+    p.jitter = 0.8;
+    // A row of logs: several sources, each with its own flicker.
+    for (double x : {0.3, 0.4, 0.5, 0.6, 0.7}) {
+      HeatSource s;
+      s.x = x;
+      s.y = 0.08;
+      s.rx = 0.06;
+      s.ry = 0.08;
+      s.rate = 40000.0;
+      s.flicker = 0.6;
+      s.flicker_hz = 4.0;
+      p.sources.push_back(s);
+    }
+  } else {
+    throw std::invalid_argument("preset: \"candle\" or \"fireplace\" (got \"" + name + "\")");
+  }
+  return p;
+}
+
+SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progress) {
+  FluidParams params = opt.params;
+  if (params.sources.empty()) params.sources.push_back(HeatSource{});
+  validate(params);
+  if (opt.frames < 1 || opt.frames > 1000000) throw std::invalid_argument("frames: 1..1000000");
+  if (!(opt.fps > 0.0) || opt.fps > 1000.0) throw std::invalid_argument("fps: a rate in (0, 1000]");
+  if (opt.substeps < 1 || opt.substeps > 100) throw std::invalid_argument("substeps: 1..100");
+  if (!(opt.warmup >= 0.0) || opt.warmup > 3600.0)
+    throw std::invalid_argument("warmup: 0..3600 seconds");
+  if (opt.scale < 1 || opt.scale > 16) throw std::invalid_argument("scale: 1..16");
+  if (opt.out_dir.empty()) throw std::invalid_argument("out: a folder to write the clip to");
+  double t_ref = opt.t_reference;
+  if (t_ref == 0.0)
+    for (const HeatSource& s : params.sources) t_ref = std::max(t_ref, s.temperature);
+  if (!(t_ref > params.t_ambient) || !std::isfinite(t_ref))
+    throw std::invalid_argument("t-reference: a temperature above the ambient temperature");
+
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(fs::path(opt.out_dir) / "frames", ec);
+  if (!ec && opt.write_fields) fs::create_directories(fs::path(opt.out_dir) / "fields", ec);
+  if (ec) throw RuntimeError("cannot create " + opt.out_dir + ": " + ec.message());
+
+  const auto start = std::chrono::steady_clock::now();
+  FluidSolver solver(params);
+  SimulateSummary sum;
+  const double dt = 1.0 / (opt.fps * opt.substeps);
+  auto one_step = [&] {
+    const StepStats st = solver.step(dt);
+    ++sum.steps;
+    sum.max_pressure_iterations = std::max(sum.max_pressure_iterations, st.pressure.iterations);
+    if (!st.pressure.converged) ++sum.unconverged_steps;
+    if (st.max_speed > 0.0)
+      sum.max_relative_residual =
+          std::max(sum.max_relative_residual, st.pressure.residual / st.max_speed);
+  };
+  const int warm_steps = static_cast<int>(std::lround(opt.warmup / dt));
+  for (int k = 0; k < warm_steps; ++k) one_step();
+
+  FieldFrame field;
+  field.t_ambient = params.t_ambient;
+  field.t_reference = t_ref;
+  field.has_velocity = true;
+  for (int f = 0; f < opt.frames; ++f) {
+    for (int k = 0; k < opt.substeps; ++k) one_step();
+    const Image img =
+        render_temperature(solver.temperature(), params.t_ambient, t_ref, opt.colour, opt.scale);
+    write_png(frame_path(opt.out_dir, f), img);
+    if (opt.write_fields) {
+      field.index = static_cast<uint32_t>(f);
+      field.time = f / opt.fps;
+      field.temperature = solver.temperature();
+      solver.cell_velocity(field.u, field.v);
+      write_field_file(field_path(opt.out_dir, f), field);
+    }
+    if (progress) progress(f + 1, opt.frames);
+  }
+
+  SimManifest m;
+  m.name = opt.name;
+  if (m.name.empty()) {
+    fs::path d = fs::absolute(opt.out_dir).lexically_normal();
+    if (d.filename().empty()) d = d.parent_path();
+    m.name = d.filename().string();
+  }
+  m.command = opt.command;
+  m.frames = opt.frames;
+  m.fps = opt.fps;
+  m.width = params.width * opt.scale;
+  m.height = params.height * opt.scale;
+  m.colour = opt.colour == ColourMode::kGray ? "gray" : "blackbody";
+  m.has_fields = opt.write_fields;
+  m.grid_width = params.width;
+  m.grid_height = params.height;
+  m.t_ambient = params.t_ambient;
+  m.t_reference = t_ref;
+  write_manifest(opt.out_dir, m);
+  sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return sum;
+}
+
+}  // namespace candela::fluid

@@ -1,0 +1,47 @@
+// Runs a FluidSolver for a number of frames and writes the clip folder
+// described in sim_dataset.h. Shared by `candela-tool simulate`, the tests and
+// the benchmarks.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "colour_map.h"
+#include "fluid_solver.h"
+
+namespace candela::fluid {
+
+struct SimulateOptions {
+  FluidParams params;
+  int frames = 120;
+  double fps = 30.0;
+  int substeps = 2;     // solver steps per frame
+  double warmup = 3.0;  // seconds simulated before the first frame
+  ColourMode colour = ColourMode::kGray;
+  int scale = 1;  // image pixels per cell
+  bool write_fields = true;
+  double t_reference = 0.0;  // 0 = the hottest source temperature
+  std::string out_dir;
+  std::string name;     // clip name; empty = the folder's name
+  std::string command;  // recorded in the manifest
+};
+
+struct SimulateSummary {
+  int steps = 0;
+  int max_pressure_iterations = 0;
+  double max_relative_residual = 0.0;  // max over steps of max|h div u| / max|u|
+  int unconverged_steps = 0;
+  double seconds = 0.0;
+};
+
+// Progress: called after each frame with (frames done, frames total).
+using Progress = std::function<void(int, int)>;
+
+// Throws std::invalid_argument for bad options, RuntimeError for I/O.
+SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progress = {});
+
+// Presets the recipe and users start from: "candle" or "fireplace".
+// Throws std::invalid_argument for an unknown name.
+FluidParams preset_params(const std::string& name);
+
+}  // namespace candela::fluid
