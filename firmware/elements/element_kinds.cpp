@@ -1,4 +1,5 @@
 // Every kind of scene element the runtime knows. Add a kind here.
+#include "elements/perlinfire/perlinfire.h"
 #include "elements/test_pattern/test_pattern.h"
 #include "scene/element.h"
 
@@ -7,6 +8,7 @@ namespace candela {
 std::span<const ElementKind> element_kinds() {
   static const ElementKind kKinds[] = {
       test_pattern_kind(),
+      perlinfire_kind(),
   };
   return kKinds;
 }
