@@ -53,6 +53,7 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
     scene.draw(frame);
     display.present();
     const auto end = Clock::now();
+    frame.last_frame_ms = std::chrono::duration<double, std::milli>(end - begin).count();
     if (s.stats) {
       const double work = std::chrono::duration<double, std::milli>(end - begin).count();
       const double interval = std::chrono::duration<double, std::milli>(end - last_present).count();

@@ -1,5 +1,6 @@
 // Every kind of scene element the runtime knows. Add a kind here.
 #include "elements/candle/candles.h"
+#include "elements/perlinfire/perlinfire.h"
 #include "elements/test_pattern/test_pattern.h"
 #include "scene/element.h"
 
@@ -9,6 +10,7 @@ std::span<const ElementKind> element_kinds() {
   static const ElementKind kKinds[] = {
       test_pattern_kind(),
       candles_kind(),
+      perlinfire_kind(),
   };
   return kKinds;
 }

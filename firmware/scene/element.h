@@ -38,6 +38,7 @@ struct FrameContext {
   uint64_t step = 0;   // the animation step being shown
   Mat4 view, projection, view_projection;
   Vec3 camera_position;
+  double last_frame_ms = 0;  // the previous frame's time, begin to end of present (0: none yet)
 };
 
 struct SceneContext {

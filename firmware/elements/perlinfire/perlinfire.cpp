@@ -1,0 +1,507 @@
+#include "elements/perlinfire/perlinfire.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "core/error.h"
+#include "core/fixed.h"
+#include "core/image.h"
+#include "core/log.h"
+#include "elements/perlinfire/fire_profile.h"
+#include "elements/perlinfire/noise_tables.h"
+#include "elements/perlinfire/quality_governor.h"
+#include "gl/program.h"
+#include "gl/texture.h"
+#include "scene/params.h"
+#include "wind/wind_field.h"
+
+namespace candela::shaders {
+std::string_view find(std::string_view name);
+}
+
+namespace candela {
+namespace {
+
+constexpr int kMaxOctaves = 8;
+constexpr double kTwoPi = 6.283185307179586;
+
+std::string_view drop_version_line(std::string_view src) {
+  if (src.starts_with("#version")) {
+    const auto nl = src.find('\n');
+    return nl == std::string_view::npos ? std::string_view{} : src.substr(nl + 1);
+  }
+  return src;
+}
+
+// Where the noise's offsets wrap: the 3-D noise repeats every 768 lattice
+// units, so its offsets wrap without a seam; the 4-D noise has no period, so
+// its offsets wrap rarely, where float precision is still fine.
+int64_t offset_period(FireNoise kind) {
+  return kind == FireNoise::kSimplex3d || kind == FireNoise::kFlow3d
+             ? NoiseConstants::kPeriod3
+             : NoiseConstants::kPeriod3 * 21;
+}
+
+struct FireSettings {
+  Vec3 size{0.4f, 0.7f, 0.4f};
+  Image profile;  // empty: the default, made at start-up
+  FireNoise noise = FireNoise::kFlow3d;
+  int octaves = 4;
+  double weight = 0.5, gain = 0.5;             // octave o weighs weight * gain^o
+  Fixed speed = Fixed::from_ratio(3, 4);       // fire heights per second the turbulence rises
+  double frequency = 3.5;                      // noise lattice cells per fire height
+  Fixed flow_speed = Fixed::from_ratio(3, 2);  // flow3d: radians per second
+  Fixed evolve = Fixed::from_ratio(1, 2);      // 4-D kinds: lattice units per second along w
+  float displacement = 0.8f;
+  float intensity = 4.0f;
+  Vec3 color{1, 1, 1};
+  bool additive = true;
+  float obstacle = 0;  // fraction of the volume's height that is solid (logs, grate)
+  Fixed wind_lean = Fixed::from_ratio(15, 100);  // tip offset per m/s, in volume widths
+  Fixed max_lean = Fixed::from_ratio(6, 10);
+  Fixed wind_drift = Fixed::from_ratio(1, 2);  // turbulence drift per m/s, fire heights/s
+  Fixed lean_response = Fixed::from_int(3);    // 1/s: how fast the flame follows the wind
+  QualityLevel quality{20, 4, 1.0f};
+  bool auto_quality = false;
+  double target_fps = 30;
+  float min_scale = 0.25f;
+};
+
+// GL texture set-up shared by the tables.
+Texture make_table_texture(GLenum internal, GLenum format, GLenum type, const void* data) {
+  Texture t = make_texture();
+  glBindTexture(GL_TEXTURE_2D, t.get());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal), NoiseTables::kSize,
+               NoiseTables::kSize, 0, format, type, data);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  return t;
+}
+
+// Where a profile can put anything: below `top` (volume heights) and inside
+// the cone radius(h) = radius - slope * h (profile units: 1 = the rim).
+// Lookups are only ever displaced upwards, so these bound the drawn fire too.
+struct ProfileBound {
+  float radius = 1, slope = 0, top = 1;
+};
+
+ProfileBound profile_bound(const Image& img) {
+  const int w = img.width, h = img.height;
+  // reach[y]: how far out anything reaches at or above row y (rows top down),
+  // half a texel wider for linear filtering.
+  std::vector<float> reach(static_cast<size_t>(h), 0.0f);
+  float top = 0, running = 0;
+  for (int row = 0; row < h; ++row) {
+    for (int col = w - 1; col >= 0; --col)
+      if (img.at(col, row, 3) > 0) {
+        running = std::max(running, std::min(1.0f, (col + 1.5f) / w));
+        if (top == 0) top = std::min(1.0f, 1.0f - (row - 0.5f) / h);
+        break;
+      }
+    reach[static_cast<size_t>(row)] = running;
+  }
+  ProfileBound b;
+  b.top = top;
+  b.radius = reach.empty() ? 0.0f : reach.back();
+  // The steepest cone through (0, radius) that stays outside every row.
+  float slope = 1e9f;
+  for (int row = 0; row + 1 < h; ++row) {
+    const float y = 1.0f - (row + 1.0f) / h;  // the row's lower edge
+    if (y > 0) slope = std::min(slope, (b.radius - reach[static_cast<size_t>(row)]) / y);
+  }
+  b.slope = std::max(0.0f, slope == 1e9f ? 0.0f : slope);
+  return b;
+}
+
+class PerlinFire final : public Element {
+ public:
+  PerlinFire(const FireSettings& s, Vec3 position, uint64_t seed)
+      : s_(s),
+        position_(position),
+        period_(offset_period(s.noise)),
+        governor_(QualityGovernor::make_ladder(s.quality, std::min(6, s.quality.steps),
+                                               std::min(1, s.quality.octaves),
+                                               std::min(s.min_scale, s.quality.scale)),
+                  governor_settings(s)) {
+    static constexpr const char* kKindDefine[] = {"simplex3d", "flow3d", "simplex4d", "perlin4d"};
+    const auto body = shaders::find("perlinfire.frag");
+    if (body.empty()) throw RuntimeError("gles_shaders/perlinfire.frag: not built in");
+    const auto vert = shaders::find("perlinfire.vert");
+    if (vert.empty()) throw RuntimeError("gles_shaders/perlinfire.vert: not built in");
+    program_ = Program::from_source("perlinfire.vert", vert,
+                                    std::string("perlinfire_noise.frag + perlinfire.frag (") +
+                                        kKindDefine[static_cast<int>(s.noise)] + ")",
+                                    perlinfire_fragment_source(body, s.noise));
+    composite_ = Program::from_library("fullscreen.vert", "perlinfire_composite.frag");
+    vao_ = make_vertex_array();
+    locate_uniforms();
+
+    const NoiseTables tables(seed);
+    perm_ = make_table_texture(GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, tables.perm2d().data());
+    grad3_ = make_table_texture(GL_RGBA8_SNORM, GL_RGBA, GL_BYTE, tables.grad3_rgba().data());
+    grad4_ = make_table_texture(GL_RGBA8_SNORM, GL_RGBA, GL_BYTE, tables.grad4_rgba().data());
+
+    Image profile = s.profile.pixels.empty() ? make_default_fire_profile() : s.profile;
+    bound_ = profile_bound(profile);
+    // Premultiplied, so linear filtering does not bleed colour out of empty texels.
+    for (size_t i = 0; i < profile.pixels.size(); i += 4)
+      for (size_t c = 0; c < 3; ++c)
+        profile.pixels[i + c] =
+            static_cast<uint8_t>((profile.pixels[i + c] * profile.pixels[i + 3] + 127) / 255);
+    profile_ = upload_rgba8(profile.width, profile.height, profile.pixels.data(), true);
+
+    for (int o = 0; o < kMaxOctaves; ++o)
+      weights_[static_cast<size_t>(o)] = static_cast<float>(s.weight * std::pow(s.gain, o));
+  }
+
+  void update(const StepContext& step) override {
+    // Wind: the tip leans with the wind (first-order lag) and the turbulence drifts.
+    WindSample w{};
+    if (step.wind) w = step.wind->sample(position_);
+    const Fixed target_x = clamp(w.x * s_.wind_lean, -s_.max_lean, s_.max_lean);
+    const Fixed target_z = clamp(w.z * s_.wind_lean, -s_.max_lean, s_.max_lean);
+    const Fixed k = std::min(Fixed::from_int(1), step.dt * s_.lean_response);
+    lean_x_ += (target_x - lean_x_) * k;
+    lean_z_ += (target_z - lean_z_) * k;
+    const Fixed lattice_per_height = Fixed::from_double(s_.frequency);
+    const int32_t wrap = static_cast<int32_t>(period_) * Fixed::kOne;
+    drift_x_.raw = (drift_x_.raw + (w.x * s_.wind_drift * lattice_per_height * step.dt).raw) % wrap;
+    drift_z_.raw = (drift_z_.raw + (w.z * s_.wind_drift * lattice_per_height * step.dt).raw) % wrap;
+    time_ = step.time;
+    uniforms_dirty_ = true;
+  }
+
+  void draw(const FrameContext& f, DrawPass pass) override {
+    if (pass != DrawPass::kFlame) return;
+    if (s_.auto_quality && f.last_frame_ms > 0) governor_.add_frame(f.last_frame_ms);
+    const QualityLevel q = s_.auto_quality ? governor_.current() : s_.quality;
+    if (uniforms_dirty_) compute_octave_uniforms();
+
+    // The march box: the unit volume widened on the side the flame leans to.
+    const float lx = lean_x_.to_float(), lz = lean_z_.to_float();
+    const Vec3 box_min{-0.5f + std::min(0.0f, lx), 0.0f, -0.5f + std::min(0.0f, lz)};
+    const Vec3 box_max{0.5f + std::max(0.0f, lx), 1.0f, 0.5f + std::max(0.0f, lz)};
+    const Mat4 model = Mat4::translate(position_) * Mat4::scale(s_.size);
+    const Mat4 mvp = f.view_projection * model;
+    int rect[4];
+    if (!screen_rect(mvp, box_min, box_max, f.width, f.height, rect)) return;
+
+    const bool offscreen = q.scale < 0.999f;
+    GLint prev_fbo = 0;
+    int sub_w = f.width, sub_h = f.height;
+    if (offscreen) {
+      glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev_fbo);
+      ensure_target(f.width, f.height);
+      sub_w = std::max(1, static_cast<int>(std::lround(f.width * q.scale)));
+      sub_h = std::max(1, static_cast<int>(std::lround(f.height * q.scale)));
+      glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+      glViewport(0, 0, sub_w, sub_h);
+      glEnable(GL_SCISSOR_TEST);
+      const float sx = static_cast<float>(sub_w) / f.width,
+                  sy = static_cast<float>(sub_h) / f.height;
+      const int x0 = std::max(0, static_cast<int>(std::floor(rect[0] * sx)) - 1);
+      const int y0 = std::max(0, static_cast<int>(std::floor(rect[1] * sy)) - 1);
+      const int x1 = std::min(sub_w, static_cast<int>(std::ceil(rect[2] * sx)) + 1);
+      const int y1 = std::min(sub_h, static_cast<int>(std::ceil(rect[3] * sy)) + 1);
+      glScissor(x0, y0, x1 - x0, y1 - y0);
+      glClearColor(0, 0, 0, 0);
+      glClear(GL_COLOR_BUFFER_BIT);
+      glDisable(GL_BLEND);
+    } else {
+      glEnable(GL_SCISSOR_TEST);
+      glScissor(rect[0], rect[1], rect[2] - rect[0], rect[3] - rect[1]);
+      set_blend();
+    }
+
+    program_.use();
+    glUniformMatrix4fv(u_.mvp, 1, GL_FALSE, mvp.m);
+    glUniform3f(u_.box_min, box_min.x, box_min.y, box_min.z);
+    glUniform3f(u_.box_max, box_max.x, box_max.y, box_max.z);
+    const Vec3 cam{(f.camera_position.x - position_.x) / s_.size.x,
+                   (f.camera_position.y - position_.y) / s_.size.y,
+                   (f.camera_position.z - position_.z) / s_.size.z};
+    glUniform3f(u_.camera, cam.x, cam.y, cam.z);
+    const Vec3 ws = s_.size * (1.0f / s_.size.y);
+    glUniform3f(u_.world_scale, ws.x, ws.y, ws.z);
+    const float fq = static_cast<float>(s_.frequency);
+    glUniform3f(u_.noise_scale, ws.x * fq, ws.y * fq, ws.z * fq);
+    // Steps of equal length: `steps` of them across the volume's width.
+    glUniform1f(u_.step_length, std::max(ws.x, ws.z) / static_cast<float>(q.steps));
+    glUniform1i(u_.max_steps, 2 * q.steps);
+    const float lean_len = std::sqrt(lx * lx + lz * lz);
+    glUniform4f(u_.bound, 0.5f * (bound_.radius + lean_len), 0.5f * bound_.slope, bound_.top, 0.0f);
+    glUniform1i(u_.octaves, std::min(q.octaves, kMaxOctaves));
+    glUniform1fv(u_.weights, kMaxOctaves, weights_.data());
+    glUniform3fv(u_.offset, kMaxOctaves, offsets_.data());
+    glUniform2fv(u_.flow_cs, kMaxOctaves, flow_cs_.data());
+    glUniform1fv(u_.time4, kMaxOctaves, time4_.data());
+    glUniform2f(u_.lean, lx, lz);
+    glUniform1f(u_.displacement, s_.displacement);
+    // The mean of |noise| is about 0.22 for all four kinds.
+    float weight_sum = 0;
+    for (int o = 0; o < std::min(q.octaves, kMaxOctaves); ++o)
+      weight_sum += weights_[static_cast<size_t>(o)];
+    glUniform1f(u_.turbulence_mean, 0.22f * weight_sum);
+    glUniform1f(u_.intensity, s_.intensity);
+    glUniform1f(u_.obstacle, s_.obstacle > 0 ? s_.obstacle : -1e9f);
+    glUniform3f(u_.color, s_.color.x, s_.color.y, s_.color.z);
+    bind_texture(0, perm_, u_.perm);
+    bind_texture(1, grad3_, u_.grad3);
+    bind_texture(2, grad4_, u_.grad4);
+    bind_texture(3, profile_, u_.profile);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_FRONT);  // back faces: one fragment per pixel, camera inside or out
+    glBindVertexArray(vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 36);
+    glDisable(GL_CULL_FACE);
+
+    if (offscreen) {
+      glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(prev_fbo));
+      glViewport(0, 0, f.width, f.height);
+      glScissor(rect[0], rect[1], rect[2] - rect[0], rect[3] - rect[1]);
+      set_blend();
+      composite_.use();
+      glUniform2f(u_.uv_per_pixel, static_cast<float>(sub_w) / f.width / target_w_,
+                  static_cast<float>(sub_h) / f.height / target_h_);
+      bind_texture(4, target_, u_.image);
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    glActiveTexture(GL_TEXTURE0);
+  }
+
+ private:
+  static QualityGovernor::Settings governor_settings(const FireSettings& s) {
+    QualityGovernor::Settings g;
+    g.budget_ms = 1000.0 / s.target_fps;
+    return g;
+  }
+
+  void locate_uniforms() {
+    const auto u = [&](const char* n) { return program_.uniform(n); };
+    u_.mvp = u("u_model_view_projection");
+    u_.box_min = u("u_box_min");
+    u_.box_max = u("u_box_max");
+    u_.camera = u("u_camera");
+    u_.world_scale = u("u_world_scale");
+    u_.noise_scale = u("u_noise_scale");
+    u_.step_length = u("u_step_length");
+    u_.max_steps = u("u_max_steps");
+    u_.bound = u("u_bound");
+    u_.octaves = u("u_octaves");
+    u_.weights = u("u_weights");
+    u_.offset = u("u_offset");
+    u_.flow_cs = u("u_flow_cs");
+    u_.time4 = u("u_time4");
+    u_.lean = u("u_lean");
+    u_.displacement = u("u_displacement");
+    u_.turbulence_mean = u("u_turbulence_mean");
+    u_.intensity = u("u_intensity");
+    u_.obstacle = u("u_obstacle");
+    u_.color = u("u_color");
+    u_.perm = u("u_perm");
+    u_.grad3 = u("u_grad3");
+    u_.grad4 = u("u_grad4");
+    u_.profile = u("u_profile");
+    u_.image = composite_.uniform("u_image");
+    u_.uv_per_pixel = composite_.uniform("u_uv_per_pixel");
+  }
+
+  static void bind_texture(int unit, const Texture& t, GLint location) {
+    if (location < 0) return;  // this noise kind does not read it
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+    glBindTexture(GL_TEXTURE_2D, t.get());
+    glUniform1i(location, unit);
+  }
+
+  void set_blend() const {
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    if (s_.additive)
+      glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+    else
+      glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  }
+
+  // The offscreen target, made once per screen size at the largest render
+  // scale the ladder uses; smaller scales use its lower-left part.
+  void ensure_target(int w, int h) {
+    if (w == screen_w_ && h == screen_h_) return;
+    screen_w_ = w;
+    screen_h_ = h;
+    const float top = s_.quality.scale;
+    target_w_ = std::max(1, static_cast<int>(std::ceil(w * top)));
+    target_h_ = std::max(1, static_cast<int>(std::ceil(h * top)));
+    if (!target_.get()) target_ = make_texture();
+    glBindTexture(GL_TEXTURE_2D, target_.get());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, target_w_, target_h_, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (!fbo_.get()) fbo_ = make_framebuffer();
+    GLint prev = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target_.get(), 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      LOG_ERROR("perlinfire: offscreen target %dx%d incomplete", target_w_, target_h_);
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(prev));
+  }
+
+  // The box's pixels on screen (x0, y0, x1, y1; GL's bottom-left origin), a
+  // little widened for filtering. False when it is off screen.
+  static bool screen_rect(const Mat4& mvp, Vec3 lo, Vec3 hi, int w, int h, int out[4]) {
+    float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+    for (int c = 0; c < 8; ++c) {
+      const Vec4 p =
+          mvp * Vec4{(c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z, 1.0f};
+      if (p.w < 1e-4f) {  // a corner behind the camera: use the whole screen
+        out[0] = 0, out[1] = 0, out[2] = w, out[3] = h;
+        return true;
+      }
+      x0 = std::min(x0, p.x / p.w), x1 = std::max(x1, p.x / p.w);
+      y0 = std::min(y0, p.y / p.w), y1 = std::max(y1, p.y / p.w);
+    }
+    out[0] = std::max(0, static_cast<int>(std::floor((x0 * 0.5f + 0.5f) * w)) - 2);
+    out[1] = std::max(0, static_cast<int>(std::floor((y0 * 0.5f + 0.5f) * h)) - 2);
+    out[2] = std::min(w, static_cast<int>(std::ceil((x1 * 0.5f + 0.5f) * w)) + 2);
+    out[3] = std::min(h, static_cast<int>(std::ceil((y1 * 0.5f + 0.5f) * h)) + 2);
+    return out[2] > out[0] && out[3] > out[1];
+  }
+
+  // Per-octave offsets, flow angles and 4th coordinates from the fixed-point
+  // clock, in integer arithmetic and wrapped where the noise repeats, so the
+  // floats handed to the shader stay small and the same on every machine.
+  void compute_octave_uniforms() {
+    uniforms_dirty_ = false;
+    const int64_t t = time_.raw;  // Q16.16 seconds
+    const int64_t wrap = period_ << Fixed::kFracBits;
+    const int64_t rise =
+        (t * Fixed::from_double(s_.frequency).raw >> Fixed::kFracBits) * s_.speed.raw >>
+        Fixed::kFracBits;
+    const int64_t evolve = t * s_.evolve.raw >> Fixed::kFracBits;
+    const int64_t spin = t * s_.flow_speed.raw >> Fixed::kFracBits;  // radians, Q16.16
+    const double to_float = 1.0 / Fixed::kOne;
+    for (int o = 0; o < kMaxOctaves; ++o) {
+      const int64_t f = int64_t{1} << o;
+      const auto i = static_cast<size_t>(o);
+      offsets_[i * 3 + 0] = static_cast<float>(((drift_x_.raw * f) % wrap) * to_float);
+      offsets_[i * 3 + 1] = static_cast<float>(((rise * f) % wrap) * to_float);
+      offsets_[i * 3 + 2] = static_cast<float>(((drift_z_.raw * f) % wrap) * to_float);
+      time4_[i] = static_cast<float>(((evolve * f) % wrap) * to_float);
+      const double angle = std::fmod(static_cast<double>(spin * f) * to_float, kTwoPi);
+      flow_cs_[i * 2 + 0] = static_cast<float>(std::cos(angle));
+      flow_cs_[i * 2 + 1] = static_cast<float>(std::sin(angle));
+    }
+  }
+
+  struct Uniforms {
+    GLint mvp, box_min, box_max, camera, world_scale, noise_scale, step_length, max_steps, bound,
+        octaves, weights, offset, flow_cs, time4, lean, displacement, turbulence_mean, intensity,
+        obstacle, color, perm, grad3, grad4, profile, image, uv_per_pixel;
+  };
+
+  FireSettings s_;
+  ProfileBound bound_;
+  Vec3 position_;
+  int64_t period_;
+  QualityGovernor governor_;
+  Program program_, composite_;
+  VertexArray vao_;
+  Uniforms u_{};
+  Texture perm_, grad3_, grad4_, profile_, target_;
+  Framebuffer fbo_;
+  int screen_w_ = 0, screen_h_ = 0, target_w_ = 0, target_h_ = 0;
+  std::array<float, kMaxOctaves> weights_{}, time4_{};
+  std::array<float, kMaxOctaves * 3> offsets_{};
+  std::array<float, kMaxOctaves * 2> flow_cs_{};
+  Fixed lean_x_, lean_z_, drift_x_, drift_z_, time_;
+  bool uniforms_dirty_ = true;
+};
+
+class PerlinFireSpec final : public ElementSpec {
+ public:
+  std::unique_ptr<Element> create(const SceneContext& context) const override {
+    return std::make_unique<PerlinFire>(settings, position, context.seed);
+  }
+  FireSettings settings;
+};
+
+std::unique_ptr<ElementSpec> parse(ParamReader& r) {
+  auto spec = std::make_unique<PerlinFireSpec>();
+  FireSettings& s = spec->settings;
+  s.size = r.vec3("size", s.size);
+  if (!(s.size.x > 0 && s.size.y > 0 && s.size.z > 0))
+    r.fail("size", "expected three positive numbers [width, height, depth] in metres");
+  const std::string profile = r.path("profile");
+  if (!profile.empty()) s.profile = load_fire_profile(profile, r.file(), r.key_path("profile"));
+  const std::string noise =
+      r.string("noise", "flow3d", {"simplex3d", "flow3d", "simplex4d", "perlin4d"});
+  s.noise = noise == "simplex3d"   ? FireNoise::kSimplex3d
+            : noise == "flow3d"    ? FireNoise::kFlow3d
+            : noise == "simplex4d" ? FireNoise::kSimplex4d
+                                   : FireNoise::kPerlin4d;
+  s.quality.octaves = static_cast<int>(r.integer("octaves", 4, 1, kMaxOctaves));
+  s.weight = r.number("weight", s.weight, 0, 4);
+  s.gain = r.number("gain", s.gain, 0, 1);
+  s.speed = r.fixed("speed", s.speed.to_double(), 0, 10);
+  s.frequency = r.number("frequency", s.frequency, 0.1, 32);
+  s.flow_speed = r.fixed("flow_speed", s.flow_speed.to_double(), 0, 20);
+  s.evolve = r.fixed("evolve", s.evolve.to_double(), 0, 10);
+  s.displacement = static_cast<float>(r.number("displacement", s.displacement, 0, 4));
+  s.intensity = static_cast<float>(r.number("intensity", s.intensity, 0, 100));
+  s.color = r.color("color", s.color);
+  s.additive = r.string("blend", "additive", {"additive", "alpha"}) == "additive";
+  s.obstacle = static_cast<float>(r.number("obstacle_height", 0, 0, 0.95));
+  s.wind_lean = r.fixed("wind_lean", s.wind_lean.to_double(), 0, 2);
+  s.max_lean = r.fixed("max_lean", s.max_lean.to_double(), 0, 2);
+  s.wind_drift = r.fixed("wind_drift", s.wind_drift.to_double(), 0, 4);
+  s.quality.steps = static_cast<int>(r.integer("steps", s.quality.steps, 2, 256));
+  s.quality.scale = static_cast<float>(r.number("render_scale", 1.0, 0.1, 1.0));
+  s.auto_quality = r.string("quality", "fixed", {"fixed", "auto"}) == "auto";
+  s.target_fps = r.number("target_fps", s.target_fps, 1, 240);
+  s.min_scale = static_cast<float>(r.number("min_render_scale", s.min_scale, 0.1, 1.0));
+  r.finish();
+  return spec;
+}
+
+}  // namespace
+
+std::string perlinfire_fragment_source(std::string_view body, FireNoise kind) {
+  const auto library = shaders::find("perlinfire_noise.frag");
+  if (library.empty()) throw RuntimeError("gles_shaders/perlinfire_noise.frag: not built in");
+  char defines[256];
+  std::snprintf(defines, sizeof defines,
+                "#version 300 es\n#define PF_NOISE_KIND %d\n#define PF_SIMPLEX_R2 %.9g\n"
+                "#define PF_SIMPLEX3_SCALE %#.9g\n#define PF_SIMPLEX4_SCALE %#.9g\n"
+                "#define PF_PERLIN4_SCALE %#.9g\n",
+                static_cast<int>(kind), NoiseConstants::kSimplexRadius2,
+                NoiseConstants::kSimplex3Scale, NoiseConstants::kSimplex4Scale,
+                NoiseConstants::kPerlin4Scale);
+  // Keep line numbers of the library in messages close: the library follows the defines.
+  std::string src = defines;
+  src += drop_version_line(library);
+  src += "\n";
+  src += drop_version_line(body);
+  return src;
+}
+
+const ElementKind& perlinfire_kind() {
+  static const ElementKind kind{
+      "perlinfire", "volumetric fire: simplex noise ray-marched through a swept profile", parse};
+  return kind;
+}
+
+}  // namespace candela

@@ -1,0 +1,26 @@
+// `perlinfire`: a volumetric, fully procedural fire after NVIDIA's Perlin-fire
+// paper. A profile texture swept about y fills a box; each pixel ray-marches
+// through it, octaves of noise displacing the profile lookup along y. Made
+// for small GPUs: ray steps, octaves and render scale are settings, and an
+// automatic mode trades them for frame time (QualityGovernor). Wind from the
+// scene's WindField bends the flame and drifts its turbulence.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "scene/element.h"
+
+namespace candela {
+
+enum class FireNoise { kSimplex3d, kFlow3d, kSimplex4d, kPerlin4d };
+
+// The fire's fragment shader text: "#version 300 es", the PF_* defines (noise
+// kind and the constants of noise_tables.h), gles_shaders/perlinfire_noise.frag
+// and then `body` (a whole shader file; its #version line is dropped). The
+// tests build their noise probes with it too.
+std::string perlinfire_fragment_source(std::string_view body, FireNoise kind);
+
+const ElementKind& perlinfire_kind();
+
+}  // namespace candela

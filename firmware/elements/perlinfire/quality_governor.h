@@ -1,0 +1,64 @@
+// Automatic quality for the Perlin fire: fed the measured time of each frame,
+// it steps down a ladder of quality levels (ray steps, octaves, render scale)
+// while frames are over budget and steps back up when they are comfortably
+// under it. Hysteresis keeps it from oscillating: a level is left downwards
+// only when over budget and upwards only when well under, and every raise
+// that has to be taken back doubles the wait before the next raise.
+// GL-free and allocation-free once built, so it is unit-tested directly.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace candela {
+
+struct QualityLevel {
+  int steps = 24;      // ray-march steps through the volume
+  int octaves = 3;     // noise octaves summed per step
+  float scale = 1.0f;  // render scale (fraction of the screen's width and height)
+  friend bool operator==(const QualityLevel&, const QualityLevel&) = default;
+};
+
+class QualityGovernor {
+ public:
+  struct Settings {
+    double budget_ms = 1000.0 / 30;  // the frame time to hold
+    int window = 16;                 // frames averaged per decision
+    int warmup = 8;                  // frames ignored at start and after a change
+    double lower_above = 1.05;       // step down when the mean is over budget * this
+    double raise_below = 0.7;        // step up when the mean is under budget * this ...
+    int raise_after = 3;             // ... for this many windows in a row (doubled on each retreat)
+    int max_raise_after = 256;
+  };
+
+  // The ladder from `top` (best) down to the floors: each rung lowers one of
+  // render scale, steps or octaves in turn.
+  static std::vector<QualityLevel> make_ladder(QualityLevel top, int min_steps = 6,
+                                               int min_octaves = 1, float min_scale = 0.25f);
+
+  QualityGovernor(std::vector<QualityLevel> ladder, Settings settings);
+
+  // One frame's time in ms; returns true when the level changed.
+  bool add_frame(double frame_ms);
+
+  int level() const { return level_; }  // 0 = best
+  int levels() const { return static_cast<int>(ladder_.size()); }
+  const QualityLevel& current() const { return ladder_[static_cast<std::size_t>(level_)]; }
+  const QualityLevel& at(int level) const { return ladder_[static_cast<std::size_t>(level)]; }
+  int changes() const { return changes_; }
+
+ private:
+  void change_to(int level);
+  std::vector<QualityLevel> ladder_;
+  Settings s_;
+  int level_ = 0;
+  int skip_ = 0;
+  int count_ = 0;
+  double sum_ = 0;
+  int good_windows_ = 0;
+  int raise_after_ = 0;
+  int raised_from_ = -1;  // the level left upwards in the last raise, while on probation
+  int changes_ = 0;
+};
+
+}  // namespace candela

@@ -1,0 +1,111 @@
+#version 300 es
+// The Perlin fire's ray march (after the Perlin-fire paper). The unit volume
+// is [-0.5, 0.5] x [0, 1] x [-0.5, 0.5]; the profile texture swept about y
+// gives its shape. Each fragment marches from where its ray enters the box to
+// the back face it was drawn for, in equal steps from a jittered start; at
+// each step octaves of noise displace the profile lookup along y and the
+// looked-up colour is summed. The ray stops at the volume's edge or at the
+// obstacle (logs, grate) filling the box below u_obstacle.
+// The program builder puts perlinfire_noise.frag in front of this text and
+// defines PF_NOISE_KIND: 0 simplex3d, 1 flow3d, 2 simplex4d, 3 perlin4d.
+precision highp float;
+precision highp int;
+
+in vec3 v_unit;
+out vec4 o_color;
+
+uniform vec3 u_camera;       // the camera in unit space
+uniform vec3 u_box_min;      // the march box (the unit volume widened by the lean)
+uniform vec3 u_box_max;
+uniform vec3 u_world_scale;  // unit space -> lengths in fire heights
+uniform vec3 u_noise_scale;  // unit space -> noise lattice (octave 0)
+uniform float u_step_length;  // fire heights per step
+uniform int u_max_steps;
+uniform vec4 u_bound;        // x - y*h: radius (unit) bounding the profile at height h; z: top
+uniform int u_octaves;
+uniform float u_weights[8];
+uniform vec3 u_offset[8];    // per octave: drift and rise, wrapped where the noise repeats
+uniform vec2 u_flow_cs[8];   // per octave: cos, sin of the flow angle
+uniform float u_time4[8];    // per octave: the 4th coordinate
+uniform vec2 u_lean;         // where the flame's tip is pushed (x, z), unit space
+uniform float u_displacement;
+uniform float u_turbulence_mean;  // subtracted, so displacement does not shorten the flame
+uniform float u_intensity;
+uniform float u_obstacle;    // the box is solid below this height (unit y)
+uniform vec3 u_color;
+uniform sampler2D u_profile; // premultiplied RGBA; u = radius, v = 1 - height
+
+float pf_turbulence(vec3 q) {
+  vec3 b = q * u_noise_scale;
+  float sum = 0.0;
+  float f = 1.0;
+  for (int o = 0; o < 8; ++o) {
+    if (o >= u_octaves) break;
+    vec3 p = b * f - u_offset[o];
+#if PF_NOISE_KIND == 0
+    float n = pf_snoise3(p);
+#elif PF_NOISE_KIND == 1
+    float n = pf_snoise3_flow(p, u_flow_cs[o]);
+#elif PF_NOISE_KIND == 2
+    float n = pf_snoise4(vec4(p, u_time4[o]));
+#else
+    float n = pf_pnoise4(vec4(p, u_time4[o]));
+#endif
+    sum += u_weights[o] * abs(n);
+    f *= 2.0;
+  }
+  return sum;
+}
+
+void main() {
+  vec3 d = v_unit - u_camera;  // t = 1 is the back face
+  // Where the ray enters the box (slab test); 0 when the camera is inside.
+  vec3 inv = 1.0 / mix(d, vec3(1e-7), lessThan(abs(d), vec3(1e-7)));
+  vec3 tn = min((u_box_min - u_camera) * inv, (u_box_max - u_camera) * inv);
+  float t_in = max(max(max(tn.x, tn.y), tn.z), 0.0);
+  float t_out = 1.0;
+  // The obstacle: a ray entering below its top is blocked at once; one going
+  // down stops where it meets the top.
+  if (u_camera.y + d.y * t_in < u_obstacle) discard;
+  if (d.y < 0.0) t_out = min(t_out, (u_obstacle - u_camera.y) / d.y);
+  // Nothing is drawn above the profile's highest non-empty row (the noise only
+  // ever moves lookups upwards), nor outside the cone that bounds the profile,
+  // widened and shifted by the lean: march only the part of the ray inside.
+  if (d.y > 0.0) t_out = min(t_out, (u_bound.z - u_camera.y) / d.y);
+  else if (u_camera.y + d.y * t_in > u_bound.z) t_in = max(t_in, (u_bound.z - u_camera.y) / d.y);
+  vec2 cxz = u_camera.xz - 0.5 * u_lean;
+  float a = u_bound.x - u_bound.y * u_camera.y;  // cone radius at the camera's height
+  float qa = dot(d.xz, d.xz) - u_bound.y * u_bound.y * d.y * d.y;
+  float qb = 2.0 * (dot(cxz, d.xz) + a * u_bound.y * d.y);
+  float qc = dot(cxz, cxz) - a * a;
+  if (qa > 1e-9) {
+    float disc = qb * qb - 4.0 * qa * qc;
+    if (disc <= 0.0) discard;
+    float h = sqrt(disc);
+    t_in = max(t_in, (-qb - h) / (2.0 * qa));
+    t_out = min(t_out, (-qb + h) / (2.0 * qa));
+  }
+  if (t_out <= t_in) discard;
+
+  // Equal steps of about u_step_length fire heights, from a jittered start
+  // (the permutation texture again) so that steps do not band.
+  float len = length(d * u_world_scale) * (t_out - t_in);
+  int n = clamp(int(ceil(len / u_step_length)), 1, u_max_steps);
+  float dt = (t_out - t_in) / float(n);
+  float ds = len / float(n);
+  float jitter = (float(pf_perm2(int(gl_FragCoord.x), int(gl_FragCoord.y))) + 0.5) / 256.0;
+  vec4 acc = vec4(0.0);
+  for (int k = 0; k < 512; ++k) {
+    if (k >= n) break;
+    vec3 p = u_camera + d * (t_in + (float(k) + jitter) * dt);
+    // Wind bends the flame: the lookup slides sideways, more towards the top.
+    vec3 q = p;
+    q.xz -= u_lean * (p.y * p.y);
+    float r = 2.0 * length(q.xz);
+    if (r >= 1.0) continue;  // outside the swept profile: nothing to add
+    float v = p.y + u_displacement * (pf_turbulence(q) - u_turbulence_mean);
+    acc += textureLod(u_profile, vec2(r, 1.0 - v), 0.0) * ds;
+  }
+  acc *= u_intensity;
+  o_color = vec4(acc.rgb * u_color, 1.0 - exp(-acc.a));
+}
