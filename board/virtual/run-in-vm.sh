@@ -102,8 +102,17 @@ fetch_debs() {
   say "downloading ${pkgs[*]}"
   local sandbox=()
   if [ "$(id -u)" -eq 0 ]; then sandbox=(-o APT::Sandbox::User=root); fi
-  (cd "$dl" && apt-get download -q "${sandbox[@]}" "${pkgs[@]}" >&2) ||
-    die "apt-get download failed for ${pkgs[*]} (is apt reachable? run apt-get update)"
+  if ! (cd "$dl" && apt-get download -q "${sandbox[@]}" "${pkgs[@]}" >&2); then
+    # Stale package lists name versions the mirror no longer has.
+    if [ "$(id -u)" -eq 0 ]; then
+      say "download failed: refreshing the package lists and retrying"
+      apt-get update -qq >&2 || true
+      (cd "$dl" && apt-get download -q "${sandbox[@]}" "${pkgs[@]}" >&2) ||
+        die "apt-get download failed for ${pkgs[*]} (is apt reachable?)"
+    else
+      die "apt-get download failed for ${pkgs[*]} (is apt reachable? run 'sudo apt-get update')"
+    fi
+  fi
 }
 
 extract_kernel() {
