@@ -92,8 +92,8 @@ fetch_debs() {
   local dl=$work/debs
   mkdir -p "$dl"
   local ver
-  ver=$(apt-cache show "linux-image-$kv" 2>/dev/null | sed -n 's/^Version: //p' | head -n1)
-  [ -n "$ver" ] || die "apt knows no package linux-image-$kv (run apt-get update)"
+  ver=$(apt-cache policy "linux-image-$kv" 2>/dev/null | sed -n 's/^ *Candidate: //p' | head -n1)
+  [ -n "$ver" ] && [ "$ver" != "(none)" ] || die "apt knows no package linux-image-$kv (run apt-get update)"
   local abi=${kv%-amd64}
   local kbuild=linux-kbuild-${kv%%.*}.$(echo "$kv" | cut -d. -f2)
   local source=linux-source-$(echo "$kv" | cut -d. -f1-2 | sed 's/-.*//')
@@ -223,13 +223,14 @@ prepare() {
     return
   fi
   local t0=$SECONDS
-  [ -f "$work/debs.done" ] || {
+  [ -f "$work/debs.done" ] || [ -f "$work/extract.done" ] || {
     fetch_debs
     touch "$work/debs.done"
   }
   [ -f "$work/extract.done" ] || {
     extract_kernel
     touch "$work/extract.done"
+    rm -rf "$work/debs" "$work/debs.done" # 220 MB, all extracted
   }
   build_modules
   build_vmlinux
@@ -267,7 +268,7 @@ if [ "$accel" = auto ]; then
 fi
 case "$accel" in
   kvm) accel_args=(-accel kvm -cpu host -smp 2) ;;
-  tcg) accel_args=(-accel "tcg,tb-size=${CANDELA_VBOARD_TB_MB:-256}" -cpu max -smp "${CANDELA_VBOARD_CPUS:-1}") ;;
+  tcg) accel_args=(-accel "tcg,tb-size=${CANDELA_VBOARD_TB_MB:-256}" -cpu "${CANDELA_VBOARD_CPU_MODEL:-max}" -smp "${CANDELA_VBOARD_CPUS:-1}") ;;
   *) die "CANDELA_VBOARD_ACCEL: expected auto, kvm or tcg, got '$accel'" ;;
 esac
 

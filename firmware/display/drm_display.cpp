@@ -113,10 +113,11 @@ class DrmDisplay final : public Display {
       LOG_WARN("%s", e.what());
     }
     restore_crtc();
-    LOG_INFO(
-        "drm: presented %llu frames (1 modeset + %llu page flips completed), %lld vblanks missed",
-        static_cast<unsigned long long>(presented_), static_cast<unsigned long long>(flips_done_),
-        static_cast<long long>(missed_));
+    if (presented_ > 0)
+      LOG_INFO(
+          "drm: presented %llu frames (1 modeset + %llu page flips completed), %lld vblanks missed",
+          static_cast<unsigned long long>(presented_), static_cast<unsigned long long>(flips_done_),
+          static_cast<long long>(missed_));
     release();
   }
 
