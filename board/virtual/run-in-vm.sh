@@ -92,8 +92,8 @@ fetch_debs() {
   local dl=$work/debs
   mkdir -p "$dl"
   local ver
-  ver=$(apt-cache show "linux-image-$kv" 2>/dev/null | sed -n 's/^Version: //p' | head -n1)
-  [ -n "$ver" ] || die "apt knows no package linux-image-$kv (run apt-get update)"
+  ver=$(apt-cache policy "linux-image-$kv" 2>/dev/null | sed -n 's/^ *Candidate: //p' | head -n1)
+  [ -n "$ver" ] && [ "$ver" != "(none)" ] || die "apt knows no package linux-image-$kv (run apt-get update)"
   local abi=${kv%-amd64}
   local kbuild=linux-kbuild-${kv%%.*}.$(echo "$kv" | cut -d. -f2)
   local source=linux-source-$(echo "$kv" | cut -d. -f1-2 | sed 's/-.*//')
@@ -102,8 +102,17 @@ fetch_debs() {
   say "downloading ${pkgs[*]}"
   local sandbox=()
   if [ "$(id -u)" -eq 0 ]; then sandbox=(-o APT::Sandbox::User=root); fi
-  (cd "$dl" && apt-get download -q "${sandbox[@]}" "${pkgs[@]}" >&2) ||
-    die "apt-get download failed for ${pkgs[*]} (is apt reachable? run apt-get update)"
+  if ! (cd "$dl" && apt-get download -q "${sandbox[@]}" "${pkgs[@]}" >&2); then
+    # Stale package lists name versions the mirror no longer has.
+    if [ "$(id -u)" -eq 0 ]; then
+      say "download failed: refreshing the package lists and retrying"
+      apt-get update -qq >&2 || true
+      (cd "$dl" && apt-get download -q "${sandbox[@]}" "${pkgs[@]}" >&2) ||
+        die "apt-get download failed for ${pkgs[*]} (is apt reachable?)"
+    else
+      die "apt-get download failed for ${pkgs[*]} (is apt reachable? run 'sudo apt-get update')"
+    fi
+  fi
 }
 
 extract_kernel() {
@@ -214,13 +223,14 @@ prepare() {
     return
   fi
   local t0=$SECONDS
-  [ -f "$work/debs.done" ] || {
+  [ -f "$work/debs.done" ] || [ -f "$work/extract.done" ] || {
     fetch_debs
     touch "$work/debs.done"
   }
   [ -f "$work/extract.done" ] || {
     extract_kernel
     touch "$work/extract.done"
+    rm -rf "$work/debs" "$work/debs.done" # 220 MB, all extracted
   }
   build_modules
   build_vmlinux
@@ -258,7 +268,7 @@ if [ "$accel" = auto ]; then
 fi
 case "$accel" in
   kvm) accel_args=(-accel kvm -cpu host -smp 2) ;;
-  tcg) accel_args=(-accel "tcg,tb-size=${CANDELA_VBOARD_TB_MB:-256}" -cpu max -smp "${CANDELA_VBOARD_CPUS:-1}") ;;
+  tcg) accel_args=(-accel "tcg,tb-size=${CANDELA_VBOARD_TB_MB:-256}" -cpu "${CANDELA_VBOARD_CPU_MODEL:-max}" -smp "${CANDELA_VBOARD_CPUS:-1}") ;;
   *) die "CANDELA_VBOARD_ACCEL: expected auto, kvm or tcg, got '$accel'" ;;
 esac
 

@@ -28,6 +28,49 @@ constexpr int kFlipTimeoutMs = 2000;
 
 std::string errno_string(int e) { return std::strerror(e); }
 
+// An atomic request in fixed storage, committed with the ioctl itself:
+// libdrm's drmModeAtomicCommit copies and sorts the request on the heap on
+// every call, and a frame must not allocate. Properties of one object are
+// added together (the kernel takes them grouped by object).
+class AtomicRequest {
+ public:
+  void clear() {
+    objects_ = 0;
+    props_ = 0;
+  }
+  bool add(uint32_t object, uint32_t property, uint64_t value) {
+    if (props_ == kMaxProps) return false;
+    if (objects_ == 0 || object_ids_[objects_ - 1] != object) {
+      if (objects_ == kMaxObjects) return false;
+      object_ids_[objects_] = object;
+      counts_[objects_++] = 0;
+    }
+    ++counts_[objects_ - 1];
+    prop_ids_[props_] = property;
+    values_[props_++] = value;
+    return true;
+  }
+  // 0 or -1 with errno set, like libdrm.
+  int commit(int fd, uint32_t flags, void* user_data) {
+    drm_mode_atomic a{};
+    a.flags = flags;
+    a.count_objs = objects_;
+    a.objs_ptr = reinterpret_cast<uintptr_t>(object_ids_);
+    a.count_props_ptr = reinterpret_cast<uintptr_t>(counts_);
+    a.props_ptr = reinterpret_cast<uintptr_t>(prop_ids_);
+    a.prop_values_ptr = reinterpret_cast<uintptr_t>(values_);
+    a.user_data = reinterpret_cast<uintptr_t>(user_data);
+    return drmIoctl(fd, DRM_IOCTL_MODE_ATOMIC, &a);
+  }
+
+ private:
+  static constexpr uint32_t kMaxObjects = 4, kMaxProps = 24;
+  uint32_t objects_ = 0, props_ = 0;
+  uint32_t object_ids_[kMaxObjects] = {}, counts_[kMaxObjects] = {};
+  uint32_t prop_ids_[kMaxProps] = {};
+  uint64_t values_[kMaxProps] = {};
+};
+
 // The DRM framebuffer made for a GBM buffer, removed when GBM frees the buffer.
 struct BufferFb {
   int fd;
@@ -49,7 +92,6 @@ class DrmDisplay final : public Display {
     try {
       init_gbm_egl();
       if (out_.atomic) {
-        req_ = drmModeAtomicAlloc();
         if (drmModeCreatePropertyBlob(out_.fd, &out_.mode, sizeof out_.mode, &mode_blob_) != 0) {
           LOG_WARN("drm: cannot create a mode blob (%s): falling back to legacy modesetting",
                    errno_string(errno).c_str());
@@ -71,10 +113,11 @@ class DrmDisplay final : public Display {
       LOG_WARN("%s", e.what());
     }
     restore_crtc();
-    LOG_INFO(
-        "drm: presented %llu frames (1 modeset + %llu page flips completed), %lld vblanks missed",
-        static_cast<unsigned long long>(presented_), static_cast<unsigned long long>(flips_done_),
-        static_cast<long long>(missed_));
+    if (presented_ > 0)
+      LOG_INFO(
+          "drm: presented %llu frames (1 modeset + %llu page flips completed), %lld vblanks missed",
+          static_cast<unsigned long long>(presented_), static_cast<unsigned long long>(flips_done_),
+          static_cast<long long>(missed_));
     release();
   }
 
@@ -227,13 +270,13 @@ class DrmDisplay final : public Display {
   void modeset(uint32_t fb) {
     if (out_.atomic) {
       const KmsPropertyIds& p = out_.props;
-      drmModeAtomicSetCursor(req_, 0);
-      drmModeAtomicAddProperty(req_, out_.connector_id, p.connector_crtc_id, out_.crtc_id);
-      drmModeAtomicAddProperty(req_, out_.crtc_id, p.crtc_mode_id, mode_blob_);
-      drmModeAtomicAddProperty(req_, out_.crtc_id, p.crtc_active, 1);
+      req_.clear();
+      req_.add(out_.connector_id, p.connector_crtc_id, out_.crtc_id);
+      req_.add(out_.crtc_id, p.crtc_mode_id, mode_blob_);
+      req_.add(out_.crtc_id, p.crtc_active, 1);
       add_plane_properties(fb);
       // Blocking and without an event: the next present() flips onto it.
-      if (drmModeAtomicCommit(out_.fd, req_, DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr) == 0) {
+      if (req_.commit(out_.fd, DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr) == 0) {
         LOG_INFO("drm: atomic modeset %s on %s done", describe_mode(out_.mode).c_str(),
                  out_.connector_name.c_str());
         return;
@@ -254,24 +297,23 @@ class DrmDisplay final : public Display {
     const KmsPropertyIds& p = out_.props;
     const uint32_t plane = out_.plane_id;
     const uint64_t w = static_cast<uint64_t>(width_), h = static_cast<uint64_t>(height_);
-    drmModeAtomicAddProperty(req_, plane, p.plane_fb_id, fb);
-    drmModeAtomicAddProperty(req_, plane, p.plane_crtc_id, out_.crtc_id);
-    drmModeAtomicAddProperty(req_, plane, p.plane_src_x, 0);
-    drmModeAtomicAddProperty(req_, plane, p.plane_src_y, 0);
-    drmModeAtomicAddProperty(req_, plane, p.plane_src_w, w << 16);
-    drmModeAtomicAddProperty(req_, plane, p.plane_src_h, h << 16);
-    drmModeAtomicAddProperty(req_, plane, p.plane_crtc_x, 0);
-    drmModeAtomicAddProperty(req_, plane, p.plane_crtc_y, 0);
-    drmModeAtomicAddProperty(req_, plane, p.plane_crtc_w, w);
-    drmModeAtomicAddProperty(req_, plane, p.plane_crtc_h, h);
+    req_.add(plane, p.plane_fb_id, fb);
+    req_.add(plane, p.plane_crtc_id, out_.crtc_id);
+    req_.add(plane, p.plane_src_x, 0);
+    req_.add(plane, p.plane_src_y, 0);
+    req_.add(plane, p.plane_src_w, w << 16);
+    req_.add(plane, p.plane_src_h, h << 16);
+    req_.add(plane, p.plane_crtc_x, 0);
+    req_.add(plane, p.plane_crtc_y, 0);
+    req_.add(plane, p.plane_crtc_w, w);
+    req_.add(plane, p.plane_crtc_h, h);
   }
 
   void queue_flip(uint32_t fb) {
     if (out_.atomic) {
-      drmModeAtomicSetCursor(req_, 0);  // reuses the request's memory: no allocation per frame
+      req_.clear();
       add_plane_properties(fb);
-      if (drmModeAtomicCommit(out_.fd, req_, DRM_MODE_ATOMIC_NONBLOCK | DRM_MODE_PAGE_FLIP_EVENT,
-                              this) == 0) {
+      if (req_.commit(out_.fd, DRM_MODE_ATOMIC_NONBLOCK | DRM_MODE_PAGE_FLIP_EVENT, this) == 0) {
         flip_pending_ = true;
         return;
       }
@@ -356,8 +398,6 @@ class DrmDisplay final : public Display {
     egl_.reset();
     if (gbm_) gbm_device_destroy(gbm_);
     gbm_ = nullptr;
-    if (req_) drmModeAtomicFree(req_);
-    req_ = nullptr;
     if (mode_blob_) drmModeDestroyPropertyBlob(out_.fd, mode_blob_);
     mode_blob_ = 0;
     if (saved_crtc_) drmModeFreeCrtc(saved_crtc_);
@@ -371,7 +411,7 @@ class DrmDisplay final : public Display {
   gbm_surface* surface_ = nullptr;
   std::optional<EglContext> egl_;
   EGLSurface egl_surface_ = EGL_NO_SURFACE;
-  drmModeAtomicReq* req_ = nullptr;
+  AtomicRequest req_;
   uint32_t mode_blob_ = 0;
   drmEventContext event_context_{};
   gbm_bo* front_ = nullptr;    // on screen

@@ -253,7 +253,12 @@ KmsOutput open_kms_output(const DisplayOptions& options, uint32_t format) {
       continue;
     }
     std::unique_ptr<drmVersion, VersionDeleter> version(drmGetVersion(fd.get()));
-    const std::string driver = version && version->name ? version->name : "?";
+    if (!version) {
+      tried += "\n  " + path + ": not a DRM device";
+      LOG_INFO("drm: skipping %s: not a DRM device", path.c_str());
+      continue;
+    }
+    const std::string driver = version->name ? version->name : "?";
     // Universal planes before resources, so the primary plane is listed.
     const bool universal = drmSetClientCap(fd.get(), DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) == 0;
     Resources res(drmModeGetResources(fd.get()));

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Installs Candela as a kiosk on this board (Raspberry Pi OS / Debian 12):
+# the binary, a system user in the video/render/input/gpio groups, and the
+# systemd unit that starts `candela --display drm` at boot and restarts it
+# if it ever stops. Run from a built checkout, as root (or with sudo):
+#   board/deploy.sh [--build-dir build] [--no-start] [--disable-desktop]
+#     --build-dir DIR     where `candela` was built (default: build)
+#     --no-start          install and enable, but do not start now
+#     --disable-desktop   boot to the console (multi-user.target): a desktop
+#                         holds the display and candela cannot show
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+args=("$@")
+build=build
+start=1
+disable_desktop=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --build-dir) build=${2:?--build-dir needs a folder}; shift ;;
+    --no-start) start=0 ;;
+    --disable-desktop) disable_desktop=1 ;;
+    -h | --help) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "deploy: unknown option $1 (see --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+if [ "$(id -u)" -ne 0 ]; then exec sudo "$0" "${args[@]}"; fi
+
+bin=$build/firmware/candela
+[ -x "$bin" ] || { echo "deploy: $bin not found: build first (see README.md)" >&2; exit 1; }
+board/install-deps.sh --runtime
+
+install -D -m 0755 "$bin" /usr/local/bin/candela
+install -D -m 0644 board/systemd/candela.service /etc/systemd/system/candela.service
+if [ ! -f /etc/default/candela ]; then
+  cat >/etc/default/candela <<'CONF'
+# Extra arguments for the kiosk, e.g.
+#   CANDELA_ARGS="--scene /etc/candela/scene.toml --size 1920x1080 --refresh 60"
+CANDELA_ARGS=""
+CONF
+fi
+
+# A system user with access to the display (video: /dev/dri/card*, render:
+# /dev/dri/renderD*), input devices, GPIO and cameras; no login, no root.
+groups=()
+for g in video render input gpio; do getent group "$g" >/dev/null && groups+=("$g"); done
+group_list=$(IFS=,; echo "${groups[*]}")
+if ! id candela >/dev/null 2>&1; then
+  useradd --system --home-dir /nonexistent --no-create-home --shell /usr/sbin/nologin \
+    ${group_list:+--groups "$group_list"} candela
+else
+  [ -n "$group_list" ] && usermod -a -G "$group_list" candela
+fi
+echo "deploy: user candela in groups: $(id -nG candela)"
+
+if systemctl is-enabled --quiet display-manager.service 2>/dev/null; then
+  if [ $disable_desktop -eq 1 ]; then
+    systemctl set-default multi-user.target
+    echo "deploy: the desktop will no longer start at boot (multi-user.target)"
+  else
+    echo "deploy: warning: a desktop (display-manager.service) starts at boot and holds the" \
+      "display; candela will keep retrying until it is gone. Rerun with --disable-desktop." >&2
+  fi
+fi
+
+systemctl daemon-reload
+systemctl enable candela.service
+if [ $start -eq 1 ]; then
+  systemctl restart candela.service
+  echo "deploy: started; follow it with: journalctl -u candela -f"
+else
+  echo "deploy: enabled; it starts at the next boot"
+fi
