@@ -61,17 +61,7 @@ std::vector<WarpPoint> mesh_vertices(int cells, double aspect) {
 }
 
 std::vector<unsigned short> mesh_indices(int cells) {
-  std::vector<unsigned short> idx;
-  const int row = cells + 1;
-  for (int j = 0; j < cells; ++j)
-    for (int i = 0; i < cells; ++i) {
-      const auto a = static_cast<unsigned short>(j * row + i);
-      const auto b = static_cast<unsigned short>(a + 1);
-      const auto c = static_cast<unsigned short>(a + row);
-      const auto d = static_cast<unsigned short>(c + 1);
-      idx.insert(idx.end(), {a, b, d, a, d, c});
-    }
-  return idx;
+  return mesh_indices(cells, [](int, int) { return true; });
 }
 
 std::vector<WarpPoint> warp_mesh(std::span<const WarpPoint> vertices,
