@@ -74,7 +74,7 @@ std::vector<WarpPoint> warp_mesh(std::span<const WarpPoint> vertices,
 
 WarpError mesh_warp_error(int cells, double aspect, std::span<const WarpLine> source,
                           std::span<const WarpLine> dest, const WarpWeights& w, double still_px,
-                          int samples) {
+                          int samples, const std::function<bool(WarpPoint)>& visible) {
   const auto src = mesh_vertices(cells, aspect);
   const auto dst = warp_mesh(src, source, dest, w);
   const auto idx = mesh_indices(cells);
@@ -94,6 +94,7 @@ WarpError mesh_warp_error(int cells, double aspect, std::span<const WarpLine> so
         const WarpPoint& d2 = dst[idx[t + 2]];
         // The drawn triangle shows the still at s here, at screen point d.
         const WarpPoint s{l0 * s0.x + l1 * s1.x + l2 * s2.x, l0 * s0.y + l1 * s1.y + l2 * s2.y};
+        if (visible && !visible(s)) continue;
         const WarpPoint d{l0 * d0.x + l1 * d1.x + l2 * d2.x, l0 * d0.y + l1 * d1.y + l2 * d2.y};
         // The exact warp fetches the still at `exact` for that point.
         const WarpPoint exact = beier_neely(d, dest, source, w);

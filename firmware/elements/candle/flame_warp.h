@@ -6,6 +6,7 @@
 // forward form per vertex; this file is its reference and its test oracle.
 #pragma once
 
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -67,9 +68,11 @@ struct WarpError {
 };
 // How far the drawn mesh (triangles, linear inside) puts still pixels from
 // where the exact backward warp would fetch them: sampled `samples` times
-// per triangle edge, measured in pixels of a still `still_px` high.
+// per triangle edge, measured in pixels of a still `still_px` high. With
+// `visible`, only points of the still it accepts count (errors where the
+// still is transparent cannot be seen).
 WarpError mesh_warp_error(int cells, double aspect, std::span<const WarpLine> source,
                           std::span<const WarpLine> dest, const WarpWeights& w, double still_px,
-                          int samples = 6);
+                          int samples = 6, const std::function<bool(WarpPoint)>& visible = nullptr);
 
 }  // namespace candela
