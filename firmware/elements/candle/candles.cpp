@@ -128,7 +128,7 @@ class Candles final : public Element {
   std::vector<float> flame_data_, glow_data_, body_data_, smoke_data_;
   std::vector<uint32_t> order_;  // candles far to near
   int flames_ = 0, glows_ = 0, smokes_ = 0;
-  uint64_t prepared_frame_ = UINT64_MAX;
+  bool prepared_ = false;
   Vec3 sorted_for_{1e30f, 0, 0};
 
   struct FlameUniforms {
@@ -278,10 +278,9 @@ void Candles::set_attrib(GLuint loc, int vec4_index, int stride_vec4, bool insta
   if (instanced) glVertexAttribDivisor(loc, 1);
 }
 
-// Fills every instance array for this frame, once, whichever pass comes first.
+// Fills every instance array for this frame: at the glow pass, the first of
+// ours in every frame.
 void Candles::prepare(const FrameContext& frame) {
-  if (prepared_frame_ == frame.frame) return;
-  prepared_frame_ = frame.frame;
   const Vec3 cam = frame.camera_position;
   if (length(cam - sorted_for_) > 1e-4f) {
     // Far to near, so that blended flames overlap correctly.
@@ -379,7 +378,8 @@ void Candles::prepare(const FrameContext& frame) {
 void Candles::draw(const FrameContext& frame, DrawPass pass) {
   if (pass != DrawPass::kGlow && pass != DrawPass::kBody && pass != DrawPass::kFlame) return;
   if (desc_.empty()) return;
-  prepare(frame);
+  if (pass == DrawPass::kGlow || !prepared_) prepare(frame);
+  prepared_ = true;
   const Mat4& v = frame.view;
   const Vec3 right{v.at(0, 0), v.at(0, 1), v.at(0, 2)};
   const Vec3 up{v.at(1, 0), v.at(1, 1), v.at(1, 2)};
