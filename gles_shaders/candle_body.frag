@@ -28,10 +28,16 @@ void main() {
   float d = length(to_light);
   float diffuse = max(dot(n, to_light / max(d, 1e-5)), 0.0) / (1.0 + d * d * 300.0);
   float depth = max(v_top - v_world.y, 0.0);
-  float scatter = exp(-depth / 0.018);
-  // A little view-dependent sheen on the melted top.
-  vec3 view = normalize(u_camera - v_world);
-  float sheen = v_kind > 0.5 ? pow(max(dot(reflect(-normalize(to_light), n), view), 0.0), 24.0) * 0.25 : 0.0;
-  vec3 c = v_wax * (0.045 + flame * v_intensity * (1.5 * diffuse + 0.5 * scatter)) + flame * sheen * v_intensity;
+  float scatter = exp(-depth / 0.03);
+  // A little view-dependent sheen on the melted pool.
+  float sheen = 0.0;
+  if (v_kind > 0.5) {
+    vec3 h = normalize(normalize(u_camera - v_world) + to_light / max(d, 1e-5));
+    float k = max(dot(n, h), 0.0);
+    k *= k;
+    k *= k;
+    sheen = k * k * 0.2;
+  }
+  vec3 c = v_wax * (0.07 + flame * v_intensity * (0.5 * diffuse + 0.42 * scatter)) + flame * sheen * v_intensity;
   o_color = vec4(min(c, vec3(1.0)), 1.0);
 }

@@ -55,7 +55,12 @@ void main() {
     vec2 m = p2 + u * d2;
     if (len_b > 1e-9) m += v * vec2(-d2.y, d2.x) / len_b;
     float dist = u < 0.0 ? length(e) : (u > 1.0 ? length(x - q) : abs(v));
-    float w = pow(pow(len, u_weights.z) / (u_weights.x + dist), u_weights.y);
+    float w;
+    if (u_weights.y == 2.0 && u_weights.z == 0.5) {
+      w = len / ((u_weights.x + dist) * (u_weights.x + dist));  // the default a, b = 2, p = 1/2
+    } else {
+      w = pow(pow(len, u_weights.z) / (u_weights.x + dist), u_weights.y);
+    }
     sum += m * w;
     wsum += w;
   }

@@ -70,6 +70,12 @@ constexpr Fixed fixed_cos(Fixed radians) {
                    Fixed::from_raw(static_cast<int32_t>(fixed_math_detail::kHalfPiQ30 >> 14)));
 }
 
+// Whole steps in `seconds` at `steps_per_second`, in 64 bits (the product
+// can exceed Q16.16's range for long times).
+constexpr int64_t steps_in(Fixed seconds, int32_t steps_per_second) {
+  return (static_cast<int64_t>(seconds.raw) * steps_per_second) >> Fixed::kFracBits;
+}
+
 // Degrees to radians for configuration values (exact to Q16 rounding).
 inline Fixed fixed_radians(double degrees) {
   return Fixed::from_double(degrees * 3.14159265358979323846 / 180.0);

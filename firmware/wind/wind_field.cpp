@@ -80,7 +80,7 @@ void WindField::start_gust(Fixed x, Fixed z, Fixed length_seconds) {
   slot->dz = z / peak;
   slot->peak = peak;
   slot->start = now_;
-  slot->length_steps = (length_seconds * steps_per_second_).floor_int();
+  slot->length_steps = static_cast<int32_t>(steps_in(length_seconds, steps_per_second_));
   if (slot->length_steps < 2) slot->length_steps = 2;
   slot->active = true;
 }
@@ -127,8 +127,8 @@ void WindField::on_key(Key key) {
 void WindField::update(const StepContext& step) {
   if (step.dt.raw > 0) steps_per_second_ = (Fixed::kOne + step.dt.raw / 2) / step.dt.raw;
   if (now_ == 0 && spec_.breeze_interval.raw > 0)
-    next_breeze_ = static_cast<uint64_t>(
-        (spec_.breeze_interval * rng_.unit() * steps_per_second_).floor_int());
+    next_breeze_ =
+        static_cast<uint64_t>(steps_in(spec_.breeze_interval * rng_.unit(), steps_per_second_));
   ++now_;
   history_[now_ % kHistorySteps] = steady_;
   for (auto& g : gusts_) {
@@ -151,7 +151,7 @@ void WindField::update(const StepContext& step) {
         bx, bz,
         spec_.breeze_seconds * (Fixed::from_ratio(7, 10) + rng_.unit() * Fixed::from_ratio(3, 5)));
     const Fixed wait = spec_.breeze_interval * (Fixed::from_ratio(1, 2) + rng_.unit());
-    next_breeze_ = now_ + static_cast<uint64_t>((wait * steps_per_second_).floor_int()) + 1;
+    next_breeze_ = now_ + static_cast<uint64_t>(steps_in(wait, steps_per_second_)) + 1;
   }
 }
 
@@ -177,7 +177,7 @@ int WindField::active_gusts() const {
 WindSample WindField::sample(WindPosition p) const {
   // Steady wind: what S emitted `delay` steps ago.
   const Fixed d0 = distance_from_plane(p, dir_x_, dir_z_);
-  int32_t delay = (d0 * inv_travel_speed_ * steps_per_second_).floor_int();
+  int64_t delay = steps_in(d0 * inv_travel_speed_, steps_per_second_);
   if (delay > kHistorySteps - 1) delay = kHistorySteps - 1;
   const uint64_t at = now_ > static_cast<uint64_t>(delay) ? now_ - delay : 0;
   const WindSample& s = history_[at % kHistorySteps];

@@ -125,7 +125,7 @@ void CandleRig::update(WindSample wind, Fixed dt) {
   if (s.lit && s.wind_speed > extinguish_speed_) {
     s.lit = false;
     s.out_steps = 0;
-    s.relight_in = (relight_seconds_ * sps).floor_int();
+    s.relight_in = static_cast<int32_t>(steps_in(relight_seconds_, sps));
     s.grow = Fixed{};
     ++s.times_out;
   } else if (!s.lit) {

@@ -45,48 +45,54 @@ struct BodyMesh {
   std::vector<float> vertices;  // 7 floats each
   std::vector<unsigned short> indices;
 };
-BodyMesh make_body_mesh(int segments) {
+BodyMesh make_body_mesh(int segments, int wick_segments) {
   BodyMesh m;
-  auto ring = [&](float rad, float y, float kind, float nx_scale, float ny) {
+  auto ring = [&](int n, float rad, float y, float kind, float nx_scale, float ny) {
     const auto first = static_cast<unsigned short>(m.vertices.size() / 7);
-    for (int i = 0; i <= segments; ++i) {
-      const float a = 2 * kPi * static_cast<float>(i) / segments;
+    for (int i = 0; i <= n; ++i) {
+      const float a = 2 * kPi * static_cast<float>(i) / n;
       const float c = std::cos(a), s = std::sin(a);
       m.vertices.insert(m.vertices.end(),
                         {c * rad, s * rad, y, kind, c * nx_scale, ny, s * nx_scale});
     }
     return first;
   };
-  auto strip = [&](unsigned short a, unsigned short b) {
-    for (int i = 0; i < segments; ++i) {
-      const auto a0 = static_cast<unsigned short>(a + i),
-                 a1 = static_cast<unsigned short>(a + i + 1);
-      const auto b0 = static_cast<unsigned short>(b + i),
-                 b1 = static_cast<unsigned short>(b + i + 1);
+  // Counter-clockwise seen from outside/above, so back faces can be culled.
+  auto strip = [&](int n, unsigned short lower, unsigned short upper) {
+    for (int i = 0; i < n; ++i) {
+      const auto a0 = static_cast<unsigned short>(lower + i);
+      const auto a1 = static_cast<unsigned short>(lower + i + 1);
+      const auto b0 = static_cast<unsigned short>(upper + i);
+      const auto b1 = static_cast<unsigned short>(upper + i + 1);
       m.indices.insert(m.indices.end(), {a0, b0, a1, a1, b0, b1});
     }
   };
-  // Side: two rings with outward normals.
-  const auto s0 = ring(1.0f, 0.0f, 0, 1, 0);
-  const auto s1 = ring(1.0f, 1.0f, 0, 1, 0);
-  strip(s0, s1);
-  // Top profile (radius factor, offset in radii, normal tilt): rim lip, then
-  // down into the pool.
-  const float profile[][3] = {{1.0f, 0.0f, 0.9f},    {0.96f, 0.05f, 0.2f},
-                              {0.9f, 0.03f, -0.5f},  {0.78f, -0.09f, -0.4f},
-                              {0.5f, -0.14f, -0.1f}, {0.0f, -kPoolDepth, 0.0f}};
-  unsigned short prev = ring(profile[0][0], profile[0][1], 1, profile[0][2], 0.45f);
+  // Side.
+  const auto s0 = ring(segments, 1.0f, 0.0f, 0, 1, 0);
+  const auto s1 = ring(segments, 1.0f, 1.0f, 0, 1, 0);
+  strip(segments, s0, s1);
+  // Melted top, outside in (radius factor, offset in radii, normal's
+  // outward tilt): the rim's lip, its inner slope, the pool and its middle.
+  const float profile[][3] = {{1.0f, 0.0f, 0.9f}, {0.95f, 0.05f, 0.1f}, {0.8f, -0.1f, -0.45f}};
+  unsigned short prev = ring(segments, profile[0][0], profile[0][1], 1, profile[0][2], 0.45f);
   for (size_t k = 1; k < std::size(profile); ++k) {
     const float t = profile[k][2];
     const float ny = std::sqrt(std::max(0.0f, 1 - t * t));
-    const auto cur = ring(profile[k][0], profile[k][1], 1, t, ny);
-    strip(prev, cur);
+    const auto cur = ring(segments, profile[k][0], profile[k][1], 1, t, ny);
+    // Going inward the "upper" ring is the inner one.
+    strip(segments, prev, cur);
     prev = cur;
   }
+  // The pool's middle: a fan.
+  const auto centre = static_cast<unsigned short>(m.vertices.size() / 7);
+  m.vertices.insert(m.vertices.end(), {0, 0, -kPoolDepth, 1, 0, 1, 0});
+  for (int i = 0; i < segments; ++i)
+    m.indices.insert(m.indices.end(), {static_cast<unsigned short>(prev + i), centre,
+                                       static_cast<unsigned short>(prev + i + 1)});
   // Wick: a thin cylinder from the pool up.
-  const auto w0 = ring(1.0f, 0.0f, 2, 1, 0);
-  const auto w1 = ring(1.0f, 1.0f, 2, 1, 0);
-  strip(w0, w1);
+  const auto w0 = ring(wick_segments, 1.0f, 0.0f, 2, 1, 0);
+  const auto w1 = ring(wick_segments, 1.0f, 1.0f, 2, 1, 0);
+  strip(wick_segments, w0, w1);
   return m;
 }
 
@@ -122,7 +128,7 @@ class Candles final : public Element {
   std::vector<float> flame_data_, glow_data_, body_data_, smoke_data_;
   std::vector<uint32_t> order_;  // candles far to near
   int flames_ = 0, glows_ = 0, smokes_ = 0;
-  uint64_t prepared_frame_ = UINT64_MAX;
+  bool prepared_ = false;
   Vec3 sorted_for_{1e30f, 0, 0};
 
   struct FlameUniforms {
@@ -183,7 +189,19 @@ Candles::Candles(const CandlesSpec& spec, const SceneContext& ctx)
     std::vector<float> v;
     for (const auto& p : verts)
       v.insert(v.end(), {static_cast<float>(p.x), static_cast<float>(p.y)});
-    const auto idx = mesh_indices(look_.mesh);
+    // Cells where the still is fully transparent stay so however they move:
+    // leave them out (llvmpipe's cost is mostly per triangle).
+    const int cells = look_.mesh;
+    const auto idx = mesh_indices(cells, [&](int ci, int cj) {
+      const int x0 = std::max(0, ci * still.width / cells - 1);
+      const int x1 = std::min(still.width, (ci + 1) * still.width / cells + 1);
+      const int y0 = std::max(0, (cells - 1 - cj) * still.height / cells - 1);
+      const int y1 = std::min(still.height, (cells - cj) * still.height / cells + 1);
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x)
+          if (still.at(x, y, 3) > 0) return true;
+      return false;
+    });
     flame_index_count_ = static_cast<GLsizei>(idx.size());
     flame_vao_ = make_vertex_array();
     glBindVertexArray(flame_vao_.get());
@@ -216,7 +234,7 @@ Candles::Candles(const CandlesSpec& spec, const SceneContext& ctx)
   }
   // Body: one mesh, per-instance placement, wax colour and flame light.
   {
-    const BodyMesh m = make_body_mesh(24);
+    const BodyMesh m = make_body_mesh(16, 5);
     body_index_count_ = static_cast<GLsizei>(m.indices.size());
     body_vao_ = make_vertex_array();
     glBindVertexArray(body_vao_.get());
@@ -260,10 +278,9 @@ void Candles::set_attrib(GLuint loc, int vec4_index, int stride_vec4, bool insta
   if (instanced) glVertexAttribDivisor(loc, 1);
 }
 
-// Fills every instance array for this frame, once, whichever pass comes first.
+// Fills every instance array for this frame: at the glow pass, the first of
+// ours in every frame.
 void Candles::prepare(const FrameContext& frame) {
-  if (prepared_frame_ == frame.frame) return;
-  prepared_frame_ = frame.frame;
   const Vec3 cam = frame.camera_position;
   if (length(cam - sorted_for_) > 1e-4f) {
     // Far to near, so that blended flames overlap correctly.
@@ -296,7 +313,8 @@ void Candles::prepare(const FrameContext& frame) {
       return base + right * (bx * scale) + up * ((by - base_y) * scale);
     };
 
-    float* b = &body_data_[k * kBodyVec4 * 4];
+    // Bodies go near to far, so hidden wax fails the depth test early.
+    float* b = &body_data_[(order_.size() - 1 - k) * kBodyVec4 * 4];
     // The flame's light: from the middle of the morphed centre line.
     const ControlLines& L = rig.lines();
     const float mx = 0.5f * (L.line[0].px.to_float() + L.line[2].qx.to_float());
@@ -360,7 +378,8 @@ void Candles::prepare(const FrameContext& frame) {
 void Candles::draw(const FrameContext& frame, DrawPass pass) {
   if (pass != DrawPass::kGlow && pass != DrawPass::kBody && pass != DrawPass::kFlame) return;
   if (desc_.empty()) return;
-  prepare(frame);
+  if (pass == DrawPass::kGlow || !prepared_) prepare(frame);
+  prepared_ = true;
   const Mat4& v = frame.view;
   const Vec3 right{v.at(0, 0), v.at(0, 1), v.at(0, 2)};
   const Vec3 up{v.at(1, 0), v.at(1, 1), v.at(1, 2)};
@@ -386,6 +405,9 @@ void Candles::draw(const FrameContext& frame, DrawPass pass) {
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
     body_prog_.use();
     glUniformMatrix4fv(body_vp_, 1, GL_FALSE, frame.view_projection.m);
     glUniform3f(body_camera_, cam.x, cam.y, cam.z);
@@ -395,6 +417,7 @@ void Candles::draw(const FrameContext& frame, DrawPass pass) {
     glBindVertexArray(body_vao_.get());
     glDrawElementsInstanced(GL_TRIANGLES, body_index_count_, GL_UNSIGNED_SHORT, nullptr,
                             static_cast<GLsizei>(desc_.size()));
+    glDisable(GL_CULL_FACE);
   } else {
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);

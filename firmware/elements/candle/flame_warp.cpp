@@ -61,17 +61,7 @@ std::vector<WarpPoint> mesh_vertices(int cells, double aspect) {
 }
 
 std::vector<unsigned short> mesh_indices(int cells) {
-  std::vector<unsigned short> idx;
-  const int row = cells + 1;
-  for (int j = 0; j < cells; ++j)
-    for (int i = 0; i < cells; ++i) {
-      const auto a = static_cast<unsigned short>(j * row + i);
-      const auto b = static_cast<unsigned short>(a + 1);
-      const auto c = static_cast<unsigned short>(a + row);
-      const auto d = static_cast<unsigned short>(c + 1);
-      idx.insert(idx.end(), {a, b, d, a, d, c});
-    }
-  return idx;
+  return mesh_indices(cells, [](int, int) { return true; });
 }
 
 std::vector<WarpPoint> warp_mesh(std::span<const WarpPoint> vertices,
@@ -84,7 +74,7 @@ std::vector<WarpPoint> warp_mesh(std::span<const WarpPoint> vertices,
 
 WarpError mesh_warp_error(int cells, double aspect, std::span<const WarpLine> source,
                           std::span<const WarpLine> dest, const WarpWeights& w, double still_px,
-                          int samples) {
+                          int samples, const std::function<bool(WarpPoint)>& visible) {
   const auto src = mesh_vertices(cells, aspect);
   const auto dst = warp_mesh(src, source, dest, w);
   const auto idx = mesh_indices(cells);
@@ -104,6 +94,7 @@ WarpError mesh_warp_error(int cells, double aspect, std::span<const WarpLine> so
         const WarpPoint& d2 = dst[idx[t + 2]];
         // The drawn triangle shows the still at s here, at screen point d.
         const WarpPoint s{l0 * s0.x + l1 * s1.x + l2 * s2.x, l0 * s0.y + l1 * s1.y + l2 * s2.y};
+        if (visible && !visible(s)) continue;
         const WarpPoint d{l0 * d0.x + l1 * d1.x + l2 * d2.x, l0 * d0.y + l1 * d1.y + l2 * d2.y};
         // The exact warp fetches the still at `exact` for that point.
         const WarpPoint exact = beier_neely(d, dest, source, w);

@@ -6,6 +6,7 @@
 // forward form per vertex; this file is its reference and its test oracle.
 #pragma once
 
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -36,8 +37,24 @@ std::vector<WarpLine> to_warp_lines(const ControlLines& lines);
 // A (cells+1)^2 grid of vertices covering the still, row by row from the
 // bottom: x in [-aspect/2, aspect/2], y in [0, 1].
 std::vector<WarpPoint> mesh_vertices(int cells, double aspect);
-// Two triangles per cell, counter-clockwise, as drawn.
+// Two triangles per cell, counter-clockwise, as drawn. With `keep`, only the
+// cells keep(i, j) accepts (column i, row j from the bottom).
 std::vector<unsigned short> mesh_indices(int cells);
+template <typename Keep>
+std::vector<unsigned short> mesh_indices(int cells, Keep keep) {
+  std::vector<unsigned short> idx;
+  const int row = cells + 1;
+  for (int j = 0; j < cells; ++j)
+    for (int i = 0; i < cells; ++i) {
+      if (!keep(i, j)) continue;
+      const auto a = static_cast<unsigned short>(j * row + i);
+      const auto b = static_cast<unsigned short>(a + 1);
+      const auto c = static_cast<unsigned short>(a + row);
+      const auto d = static_cast<unsigned short>(c + 1);
+      idx.insert(idx.end(), {a, b, d, a, d, c});
+    }
+  return idx;
+}
 
 // The forward (fast) warp: every mesh vertex mapped from the source lines to
 // the destination lines.
@@ -51,9 +68,11 @@ struct WarpError {
 };
 // How far the drawn mesh (triangles, linear inside) puts still pixels from
 // where the exact backward warp would fetch them: sampled `samples` times
-// per triangle edge, measured in pixels of a still `still_px` high.
+// per triangle edge, measured in pixels of a still `still_px` high. With
+// `visible`, only points of the still it accepts count (errors where the
+// still is transparent cannot be seen).
 WarpError mesh_warp_error(int cells, double aspect, std::span<const WarpLine> source,
                           std::span<const WarpLine> dest, const WarpWeights& w, double still_px,
-                          int samples = 6);
+                          int samples = 6, const std::function<bool(WarpPoint)>& visible = nullptr);
 
 }  // namespace candela

@@ -1,0 +1,174 @@
+// Candles rendered headless and checked the way a viewer would: flames sit
+// above their wicks, glows light the air around them, every candle shows,
+// blowing them out leaves the screen dark and they come back, and the same
+// seed draws the same frames.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "support/render_harness.h"
+
+namespace candela {
+namespace {
+
+constexpr int kW = 320, kH = 240;
+constexpr float kCandleHeight = 0.08f, kRadius = 0.022f, kFlameHeight = 0.055f;
+const Vec3 kCamera{0.0f, 0.09f, 0.6f}, kTarget{0.0f, 0.09f, 0.0f};
+
+std::string scene(int candles, double glow_strength = 0.55, const std::string& extra = "") {
+  std::string s = R"(
+[background]
+color = "#000000"
+[camera]
+position = [0.0, 0.09, 0.6]
+target = [0.0, 0.09, 0.0]
+fov = 35
+[[element]]
+kind = "candles"
+flame_height = 0.055
+glow_strength = )" +
+                  std::to_string(glow_strength) + "\n" + extra + "\n";
+  for (int i = 0; i < candles; ++i) {
+    const double x = (i - (candles - 1) / 2.0) * 0.1;
+    s += "[[element.candle]]\nposition = [" + std::to_string(x) +
+         ", 0.0, 0.0]\nheight = 0.08\nradius = 0.022\n";
+  }
+  return s;
+}
+
+// Where a world point lands on the frame (x right, y down), as Scene draws it.
+Vec2 project(Vec3 p) {
+  const Mat4 view = Mat4::look_at(kCamera, kTarget, {0, 1, 0});
+  const Mat4 proj =
+      Mat4::perspective(35 * 3.14159265f / 180, static_cast<float>(kW) / kH, 0.02f, 100);
+  const Vec4 c = (proj * view) * Vec4{p.x, p.y, p.z, 1};
+  return {(c.x / c.w + 1) * 0.5f * kW, (1 - c.y / c.w) * 0.5f * kH};
+}
+
+// Connected regions of pixels brighter than `level` (4-neighbour flood fill).
+int bright_regions(const test::Frame& f, double level) {
+  std::vector<char> seen(static_cast<size_t>(f.width) * f.height, 0);
+  int regions = 0;
+  std::vector<int> stack;
+  for (int y = 0; y < f.height; ++y)
+    for (int x = 0; x < f.width; ++x) {
+      if (seen[y * f.width + x] || f.luma(x, y) <= level) continue;
+      ++regions;
+      stack.push_back(y * f.width + x);
+      seen[y * f.width + x] = 1;
+      while (!stack.empty()) {
+        const int i = stack.back();
+        stack.pop_back();
+        const int px = i % f.width, py = i / f.width;
+        const int nb[4][2] = {{px + 1, py}, {px - 1, py}, {px, py + 1}, {px, py - 1}};
+        for (const auto& n : nb) {
+          if (n[0] < 0 || n[1] < 0 || n[0] >= f.width || n[1] >= f.height) continue;
+          const int j = n[1] * f.width + n[0];
+          if (!seen[j] && f.luma(n[0], n[1]) > level) {
+            seen[j] = 1;
+            stack.push_back(j);
+          }
+        }
+      }
+    }
+  return regions;
+}
+
+TEST(CandleRender, FlamesStandAboveTheirWicks) {
+  test::RenderHarness h(scene(3), kW, kH, 4);
+  h.run(30);
+  const test::Frame f = h.read();
+  const float pool_top = kCandleHeight - 0.15f * kRadius;
+  for (int i = 0; i < 3; ++i) {
+    SCOPED_TRACE(i);
+    const float x = (i - 1) * 0.1f;
+    const Vec2 wick = project({x, pool_top, 0});
+    const Vec2 tip = project({x, pool_top + kFlameHeight, 0});
+    const float flame_px = wick.y - tip.y;
+    ASSERT_GT(flame_px, 15);
+    // The brightest pixel near the candle's axis.
+    double best = -1;
+    int bx = 0, by = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int px = static_cast<int>(wick.x) - 8; px <= static_cast<int>(wick.x) + 8; ++px)
+        if (f.luma(px, y) > best) best = f.luma(px, y), bx = px, by = y;
+    EXPECT_GT(best, 200);
+    EXPECT_NEAR(bx, wick.x, 4);
+    // Above the wick, within the flame's height.
+    EXPECT_LT(by, wick.y - 0.1f * flame_px);
+    EXPECT_GT(by, wick.y - 0.9f * flame_px);
+    // The wax just below the pool is lit but far dimmer than the flame.
+    const Vec2 side = project({x, kCandleHeight - 0.02f, kRadius});
+    EXPECT_LT(f.luma(static_cast<int>(side.x), static_cast<int>(side.y)), best * 0.8);
+  }
+}
+
+// Renders a scene and reads its last frame. One harness at a time: read()
+// reads whichever GL context is current, which is the newest harness's.
+test::Frame render(const std::string& toml, uint64_t seed, int frames) {
+  test::RenderHarness h(toml, kW, kH, seed);
+  h.run(frames);
+  return h.read();
+}
+
+TEST(CandleRender, GlowLightsTheAirAroundTheFlame) {
+  const test::Frame a = render(scene(1), 4, 20), b = render(scene(1, 0.0), 4, 20);
+  const float pool_top = kCandleHeight - 0.15f * kRadius;
+  const Vec2 centre = project({0, pool_top + 0.45f * kFlameHeight, 0});
+  const Vec2 beside = project({0.035f, pool_top + 0.45f * kFlameHeight, 0});
+  const Vec2 above = project({0, pool_top + 1.2f * kFlameHeight, 0});
+  const Vec2 far = project({0.2f, pool_top, 0});
+  auto luma = [](const test::Frame& f, Vec2 p) {
+    return f.luma(static_cast<int>(p.x), static_cast<int>(p.y));
+  };
+  // Outside the flame the glow is all there is: lit with it, dark without.
+  EXPECT_GT(luma(a, beside), 12);
+  EXPECT_LT(luma(b, beside), 3);
+  EXPECT_GT(luma(a, above), 3);
+  EXPECT_GT(luma(a, beside), luma(a, above));  // centred on the flame, fading outward
+  EXPECT_LT(luma(a, far), 2);
+  // The glow is centred on the flame (which sways a little): about as bright
+  // on both sides.
+  const Vec2 left = project({-0.035f, pool_top + 0.45f * kFlameHeight, 0});
+  EXPECT_NEAR(luma(a, left), luma(a, beside), 0.35 * luma(a, beside));
+  EXPECT_GT(luma(a, centre), 200);
+}
+
+TEST(CandleRender, EveryCandleShows) {
+  for (int n : {1, 3, 5}) {
+    SCOPED_TRACE(n);
+    EXPECT_EQ(bright_regions(render(scene(n), 2, 10), 180), n);
+  }
+}
+
+TEST(CandleRender, BlownOutThenRelit) {
+  test::RenderHarness h(scene(3, 0.55, "[element.extinguish]\nrelight_seconds = 1.5\n"), kW, kH, 3);
+  h.run(5);
+  ASSERT_EQ(bright_regions(h.read(), 180), 3);
+  h.scene().on_key(Key::kBlowOut);
+  LoopSettings one;
+  one.max_frames = 1;
+  int fewest = 3, dark_frames = 0;
+  for (int i = 0; i < 60 * 5; ++i) {
+    run_frame_loop(h.display(), h.scene(), one);
+    if (i % 5) continue;
+    const int n = bright_regions(h.read(), 180);
+    fewest = std::min(fewest, n);
+    dark_frames += n == 0;
+  }
+  EXPECT_EQ(fewest, 0);
+  EXPECT_GT(dark_frames, 3);
+  EXPECT_EQ(bright_regions(h.read(), 180), 3);
+}
+
+TEST(CandleRender, SameSeedSameFrames) {
+  const std::string s = scene(3);
+  const test::Frame a = render(s, 8, 45), b = render(s, 8, 45), c = render(s, 9, 45);
+  EXPECT_EQ(a.rgba, b.rgba);
+  EXPECT_NE(a.rgba, c.rgba);
+}
+
+}  // namespace
+}  // namespace candela
