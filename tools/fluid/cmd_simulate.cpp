@@ -59,8 +59,9 @@ int run_simulate(int argc, char** argv) {
   app.add_option("--colour,--color", colour, "frame colours: gray or blackbody")
       ->capture_default_str();
   app.add_option("--scale", scale, "image pixels per cell (1..16)")->capture_default_str();
-  app.add_option("--t-reference", t_reference,
-                 "temperature shown as full brightness, K (default: hottest source)");
+  app.add_option(
+      "--t-reference", t_reference,
+      "temperature shown as full brightness, K (default: hottest cell after the warm-up)");
   app.add_option("--name", name, "clip name in the manifest (default: the folder's name)");
   app.add_flag("--no-fields", no_fields, "write only PNG frames, no .cfld fields");
   app.add_flag("--quiet,-q", quiet, "no progress on stderr");

@@ -63,14 +63,14 @@ Image render_flame_photo(int width, int height, uint64_t seed, bool with_alpha) 
       const double vv = std::clamp(v, 0.0, 1.0);
       const double half = 0.42 * std::sqrt(std::max(0.0, vv)) * std::pow(1.0 - vv, 0.8) + 1e-6;
       const double edge = 1.0 - std::fabs(u) / half + 0.6 * (n - 0.5);
-      double intensity = (v < 0.0 || v > 1.0) ? 0.0 : std::clamp(edge * 1.6, 0.0, 1.0);
-      intensity *= std::clamp(0.3 + 1.8 * (n - 0.3), 0.05, 1.0);  // inner detail
-      intensity *= std::clamp(1.25 - vv, 0.0, 1.0);               // dimmer toward the tip
+      double intensity = (v < 0.0 || v > 1.0) ? 0.0 : std::clamp(edge * 2.2, 0.0, 1.0);
+      intensity *= std::clamp(0.75 + 1.2 * (n - 0.5), 0.1, 1.0);  // inner detail
+      intensity *= std::clamp(1.2 - 0.7 * vv, 0.0, 1.0);          // dimmer toward the tip
       // Colour ramp: deep red -> orange -> pale yellow as it gets hotter.
       const double i = std::clamp(intensity, 0.0, 1.0);
       const double r = std::clamp(0.35 + 1.3 * i, 0.0, 1.0);
-      const double g = std::clamp(-0.15 + 1.2 * i * i + 0.2 * i, 0.0, 1.0);
-      const double b = std::clamp(1.4 * i * i * i * i - 0.1, 0.0, 1.0);
+      const double g = std::clamp(-0.1 + 1.1 * i * i + 0.3 * i, 0.0, 1.0);
+      const double b = std::clamp(1.3 * i * i * i * i - 0.15, 0.0, 1.0);
       uint8_t* p = img.row(y) + static_cast<size_t>(x) * img.channels;
       const double a = with_alpha ? std::clamp(i * 1.3, 0.0, 1.0) : 1.0;
       // With alpha the colour is straight (not premultiplied); without it the

@@ -71,9 +71,7 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
   if (opt.scale < 1 || opt.scale > 16) throw std::invalid_argument("scale: 1..16");
   if (opt.out_dir.empty()) throw std::invalid_argument("out: a folder to write the clip to");
   double t_ref = opt.t_reference;
-  if (t_ref == 0.0)
-    for (const HeatSource& s : params.sources) t_ref = std::max(t_ref, s.temperature);
-  if (!(t_ref > params.t_ambient) || !std::isfinite(t_ref))
+  if (t_ref != 0.0 && (!(t_ref > params.t_ambient) || !std::isfinite(t_ref)))
     throw std::invalid_argument("t-reference: a temperature above the ambient temperature");
 
   namespace fs = std::filesystem;
@@ -97,6 +95,14 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
   };
   const int warm_steps = static_cast<int>(std::lround(opt.warmup / dt));
   for (int k = 0; k < warm_steps; ++k) one_step();
+  // Automatic reference: the flame's core after the warm-up (sources rarely
+  // reach their own temperature once the flow carries heat away), so frames
+  // use the whole gray range.
+  if (t_ref == 0.0) {
+    t_ref = solver.max_temperature();
+    if (t_ref < params.t_ambient + 1.0)
+      for (const HeatSource& s : params.sources) t_ref = std::max(t_ref, s.temperature);
+  }
 
   FieldFrame field;
   field.t_ambient = params.t_ambient;

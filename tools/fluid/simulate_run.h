@@ -20,7 +20,7 @@ struct SimulateOptions {
   ColourMode colour = ColourMode::kGray;
   int scale = 1;  // image pixels per cell
   bool write_fields = true;
-  double t_reference = 0.0;  // 0 = the hottest source temperature
+  double t_reference = 0.0;  // 0 = the hottest cell after the warm-up
   std::string out_dir;
   std::string name;     // clip name; empty = the folder's name
   std::string command;  // recorded in the manifest
