@@ -207,8 +207,9 @@ class PerlinFire final : public Element {
                   sy = static_cast<float>(sub_h) / f.height;
       const int x0 = std::max(0, static_cast<int>(std::floor(rect[0] * sx)) - 1);
       const int y0 = std::max(0, static_cast<int>(std::floor(rect[1] * sy)) - 1);
-      const int x1 = std::min(sub_w, static_cast<int>(std::ceil(rect[2] * sx)) + 1);
-      const int y1 = std::min(sub_h, static_cast<int>(std::ceil(rect[3] * sy)) + 1);
+      // One texel past the part in use is cleared too: filtering reads it.
+      const int x1 = std::min(target_w_, static_cast<int>(std::ceil(rect[2] * sx)) + 2);
+      const int y1 = std::min(target_h_, static_cast<int>(std::ceil(rect[3] * sy)) + 2);
       glScissor(x0, y0, x1 - x0, y1 - y0);
       glClearColor(0, 0, 0, 0);
       glClear(GL_COLOR_BUFFER_BIT);
@@ -471,7 +472,7 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.quality.steps = static_cast<int>(r.integer("steps", s.quality.steps, 2, 256));
   s.quality.scale = static_cast<float>(r.number("render_scale", 1.0, 0.1, 1.0));
   s.auto_quality = r.string("quality", "fixed", {"fixed", "auto"}) == "auto";
-  s.target_fps = r.number("target_fps", s.target_fps, 1, 240);
+  s.target_fps = r.number("target_fps", s.target_fps, 1, 10000);
   s.min_scale = static_cast<float>(r.number("min_render_scale", s.min_scale, 0.1, 1.0));
   r.finish();
   return spec;

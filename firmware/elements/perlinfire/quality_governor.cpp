@@ -46,9 +46,12 @@ QualityGovernor::QualityGovernor(std::vector<QualityLevel> ladder, Settings sett
       skip_(settings.warmup),
       raise_after_(settings.raise_after) {
   if (ladder_.empty()) ladder_.push_back(QualityLevel{});
+  ratio_.assign(ladder_.size(), 0.0);
 }
 
 void QualityGovernor::change_to(int level) {
+  left_level_ = level_;
+  left_mean_ = sum_ / std::max(count_, 1);
   level_ = level;
   ++changes_;
   skip_ = s_.warmup;
@@ -65,10 +68,18 @@ bool QualityGovernor::add_frame(double frame_ms) {
   sum_ += frame_ms;
   if (++count_ < s_.window) return false;
   const double mean = sum_ / count_;
-  count_ = 0;
-  sum_ = 0;
+  // The first window after a change: learn how the two levels compare.
+  if (left_level_ >= 0 && mean > 0) {
+    const int lower = std::max(left_level_, level_);
+    ratio_[static_cast<size_t>(lower)] =
+        left_level_ < level_ ? left_mean_ / mean : mean / left_mean_;
+    left_level_ = -1;
+  }
   if (mean > s_.budget_ms * s_.lower_above) {
-    if (level_ + 1 >= levels()) return false;  // already at the floor
+    if (level_ + 1 >= levels()) {
+      count_ = 0, sum_ = 0;
+      return false;  // already at the floor
+    }
     // Falling back right after a raise: that raise was a mistake; wait longer next time.
     if (raised_from_ == level_ + 1) raise_after_ = std::min(raise_after_ * 2, s_.max_raise_after);
     raised_from_ = -1;
@@ -76,8 +87,13 @@ bool QualityGovernor::add_frame(double frame_ms) {
     return true;
   }
   // A window within budget at a raised level ends its probation.
-  if (raised_from_ >= 0) raised_from_ = -1;
-  if (mean < s_.budget_ms * s_.raise_below && level_ > 0) {
+  if (raised_from_ >= 0) {
+    raised_from_ = -1;
+    raise_after_ = s_.raise_after;
+  }
+  const double ratio = level_ > 0 ? ratio_[static_cast<size_t>(level_)] : 0.0;
+  const bool fits_above = ratio <= 0 || mean * ratio < s_.budget_ms * s_.predicted_below;
+  if (level_ > 0 && mean < s_.budget_ms * s_.raise_below && fits_above) {
     if (++good_windows_ >= raise_after_) {
       raised_from_ = level_;
       change_to(level_ - 1);
@@ -86,6 +102,8 @@ bool QualityGovernor::add_frame(double frame_ms) {
   } else {
     good_windows_ = 0;
   }
+  count_ = 0;
+  sum_ = 0;
   return false;
 }
 

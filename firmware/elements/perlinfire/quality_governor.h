@@ -2,8 +2,10 @@
 // it steps down a ladder of quality levels (ray steps, octaves, render scale)
 // while frames are over budget and steps back up when they are comfortably
 // under it. Hysteresis keeps it from oscillating: a level is left downwards
-// only when over budget and upwards only when well under, and every raise
-// that has to be taken back doubles the wait before the next raise.
+// only when over budget and upwards only when well under; it also remembers
+// how much dearer each level was than the one below when it last saw both,
+// and does not climb to a level predicted to break the budget again. A raise
+// that still has to be taken back doubles the wait before the next one.
 // GL-free and allocation-free once built, so it is unit-tested directly.
 #pragma once
 
@@ -28,7 +30,8 @@ class QualityGovernor {
     double lower_above = 1.05;       // step down when the mean is over budget * this
     double raise_below = 0.7;        // step up when the mean is under budget * this ...
     int raise_after = 3;             // ... for this many windows in a row (doubled on each retreat)
-    int max_raise_after = 256;
+    int max_raise_after = 64;
+    double predicted_below = 0.9;  // ... and the level above is predicted under budget * this
   };
 
   // The ladder from `top` (best) down to the floors: each rung lowers one of
@@ -50,6 +53,10 @@ class QualityGovernor {
  private:
   void change_to(int level);
   std::vector<QualityLevel> ladder_;
+  // ratio_[l]: mean frame time at level l - 1 over that at level l, when last
+  // seen one after the other (0: not yet).
+  std::vector<double> ratio_;
+  double left_mean_ = 0;  // the mean at the level just left, until the new level's first window
   Settings s_;
   int level_ = 0;
   int skip_ = 0;
@@ -57,6 +64,7 @@ class QualityGovernor {
   double sum_ = 0;
   int good_windows_ = 0;
   int raise_after_ = 0;
+  int left_level_ = -1;
   int raised_from_ = -1;  // the level left upwards in the last raise, while on probation
   int changes_ = 0;
 };

@@ -1,0 +1,212 @@
+// The Perlin fire rendered headless: where light falls, where it must not,
+// seeds, wind, and what a broken setting says.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "gl/math.h"
+#include "scene/scene_file.h"
+#include "support/render_harness.h"
+
+namespace candela {
+namespace {
+
+constexpr int kW = 96, kH = 128;
+const Vec3 kCamera{0.0f, 0.35f, 1.6f}, kTarget{0.0f, 0.3f, 0.0f};
+const Vec3 kPosition{0.0f, 0.0f, 0.0f}, kSize{0.45f, 0.6f, 0.45f};
+
+std::string scene(const std::string& extra, const std::string& noise = "flow3d",
+                  const std::string& head = "",
+                  const std::string& quality = "steps = 12\noctaves = 3\n") {
+  return head + R"(
+[background]
+color = "#000000"
+[camera]
+position = [0.0, 0.35, 1.6]
+target = [0.0, 0.3, 0.0]
+fov = 40
+[[element]]
+kind = "perlinfire"
+position = [0.0, 0.0, 0.0]
+size = [0.45, 0.6, 0.45]
+noise = ")" +
+         noise + "\"\n" + quality + extra;
+}
+
+// Where a point of the scene lands on screen (pixels, y down), as Scene draws it.
+Vec2 project(Vec3 p) {
+  const Mat4 vp =
+      Mat4::perspective(40.0f * 3.14159265f / 180.0f, static_cast<float>(kW) / kH, 0.02f, 100.0f) *
+      Mat4::look_at(kCamera, kTarget, {0, 1, 0});
+  const Vec4 c = vp * Vec4{p.x, p.y, p.z, 1.0f};
+  return {(c.x / c.w * 0.5f + 0.5f) * kW, (0.5f - c.y / c.w * 0.5f) * kH};
+}
+
+double mean_luma(const test::Frame& f, Vec2 at, int radius) {
+  double sum = 0;
+  int n = 0;
+  for (int y = static_cast<int>(at.y) - radius; y <= static_cast<int>(at.y) + radius; ++y)
+    for (int x = static_cast<int>(at.x) - radius; x <= static_cast<int>(at.x) + radius; ++x) {
+      sum += f.luma(x, y);
+      ++n;
+    }
+  return sum / n;
+}
+
+// Renders `frames` frames of a scene and returns the last. One harness at a
+// time: each owns the current GL context while it lives.
+test::Frame render(const std::string& toml, int frames, uint64_t seed = 0) {
+  test::RenderHarness h(toml, kW, kH, seed);
+  h.run(static_cast<uint64_t>(frames));
+  return h.read();
+}
+
+class FireByNoise : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(FireByNoise, BrighterAtTheBottomCentreThanAtTheTopEdge) {
+  test::RenderHarness h(scene("", GetParam()), kW, kH);
+  double bottom = 0, top = 0;
+  for (int frames : {3, 20}) {
+    h.run(static_cast<uint64_t>(frames));
+    const test::Frame f = h.read();
+    bottom += mean_luma(f, project({0.0f, 0.1f * kSize.y, 0.0f}), 1);
+    top += mean_luma(f, project({0.0f, 0.97f * kSize.y, 0.0f}), 1);
+  }
+  EXPECT_GT(bottom / 2, 60.0);
+  EXPECT_LT(top / 2, bottom / 2 * 0.25);
+}
+
+INSTANTIATE_TEST_SUITE_P(Kinds, FireByNoise,
+                         ::testing::Values("simplex3d", "flow3d", "simplex4d", "perlin4d"));
+
+// The box's corners on screen, widened by `margin` pixels.
+void box_rect(int margin, int r[4]) {
+  float x0 = 1e9f, y0 = 1e9f, x1 = -1e9f, y1 = -1e9f;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 p{kPosition.x + ((c & 1) ? 0.5f : -0.5f) * kSize.x, (c & 2) ? kSize.y : 0.0f,
+                 kPosition.z + ((c & 4) ? 0.5f : -0.5f) * kSize.z};
+    const Vec2 s = project(p);
+    x0 = std::min(x0, s.x), x1 = std::max(x1, s.x), y0 = std::min(y0, s.y), y1 = std::max(y1, s.y);
+  }
+  r[0] = static_cast<int>(x0) - margin, r[1] = static_cast<int>(y0) - margin;
+  r[2] = static_cast<int>(x1) + margin, r[3] = static_cast<int>(y1) + margin;
+}
+
+TEST(PerlinFire, NothingIsDrawnOutsideTheVolume) {
+  for (const char* scale : {"1.0", "0.5"}) {
+    SCOPED_TRACE(scale);
+    test::RenderHarness h(scene(std::string("render_scale = ") + scale), kW, kH);
+    h.run(8);
+    const test::Frame f = h.read();
+    int r[4];
+    box_rect(2, r);
+    int lit_inside = 0, lit_outside = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        const bool inside = x >= r[0] && x <= r[2] && y >= r[1] && y <= r[3];
+        const test::Rgba c = f.at(x, y);
+        const bool lit = c.r + c.g + c.b > 0;
+        (inside ? lit_inside : lit_outside) += lit;
+      }
+    EXPECT_EQ(lit_outside, 0);
+    EXPECT_GT(lit_inside, (r[2] - r[0]) * (r[3] - r[1]) / 8);  // and there is a fire
+  }
+}
+
+TEST(PerlinFire, OneSeedGivesTheSameFramesTwoSeedsDifferent) {
+  const std::string s = scene("render_scale = 0.5");
+  const test::Frame fa = render(s, 6, 11), fb = render(s, 6, 11), fc = render(s, 6, 12);
+  EXPECT_EQ(fa.rgba, fb.rgba);
+  int differ = 0;
+  for (size_t i = 0; i < fa.rgba.size(); i += 4)
+    differ += std::abs(fa.rgba[i] - fc.rgba[i]) + std::abs(fa.rgba[i + 1] - fc.rgba[i + 1]) > 8;
+  EXPECT_GT(differ, 200);
+}
+
+TEST(PerlinFire, AnimatesOverTime) {
+  test::RenderHarness h(scene(""), kW, kH);
+  h.run(5);
+  const test::Frame f1 = h.read();
+  h.run(15);
+  const test::Frame f2 = h.read();
+  int differ = 0;
+  for (size_t i = 0; i < f1.rgba.size(); i += 4) differ += std::abs(f1.rgba[i] - f2.rgba[i]) > 8;
+  EXPECT_GT(differ, 100);
+}
+
+// Luma-weighted mean x of the frame's upper half of the flame.
+double centroid_x(const test::Frame& f) {
+  double sum = 0, wsum = 0;
+  const int y_top = static_cast<int>(project({0, kSize.y, 0}).y);
+  const int y_mid = static_cast<int>(project({0, kSize.y * 0.5f, 0}).y);
+  for (int y = y_top; y < y_mid; ++y)
+    for (int x = 0; x < kW; ++x) {
+      sum += f.luma(x, y) * x;
+      wsum += f.luma(x, y);
+    }
+  return wsum > 0 ? sum / wsum : 0;
+}
+
+TEST(PerlinFire, WindBendsTheFlameDownwind) {
+  const std::string calm = scene(""),
+                    windy = scene("", "flow3d", "[wind]\nspeed = 3.0\ndirection = [1, 0, 0]\n");
+  // Wind blowing to +x: the upper flame moves right (a pixel is about 1 cm here).
+  const double shift = centroid_x(render(windy, 90)) - centroid_x(render(calm, 90));
+  EXPECT_GT(shift, 3.0);
+}
+
+TEST(PerlinFire, ObstacleHidesTheBaseOfTheFire) {
+  const Vec2 base = project({0.0f, 0.1f * kSize.y, 0.5f * kSize.z});
+  EXPECT_GT(mean_luma(render(scene(""), 4), base, 1), 40.0);
+  EXPECT_EQ(mean_luma(render(scene("obstacle_height = 0.3"), 4), base, 1), 0.0);
+}
+
+TEST(PerlinFire, AutoQualityUnderAnImpossibleBudgetSettlesAtTheFloor) {
+  // 10000 fps: every frame is over budget, so the governor must walk the
+  // whole ladder down (scale, steps, octaves) and stay at its last rung,
+  // which then draws exactly what that quality set by hand draws.
+  const std::string floor =
+      scene("", "flow3d", "", "render_scale = 0.25\nsteps = 6\noctaves = 1\n");
+  const std::string autoq = scene("quality = \"auto\"\ntarget_fps = 10000");
+  for (int frames : {400, 430}) {
+    SCOPED_TRACE(frames);
+    EXPECT_EQ(render(autoq, frames).rgba, render(floor, frames).rgba);
+  }
+  // With the budget met, the same scene keeps its full quality.
+  EXPECT_NE(render(scene("quality = \"auto\"\ntarget_fps = 1"), 400).rgba, render(floor, 400).rgba);
+}
+
+TEST(PerlinFire, BadSettingsNameTheKey) {
+  try {
+    load_scene_text(scene("", "simplex5d"), "fire.toml");
+    FAIL() << "accepted noise = simplex5d";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "element[0].noise");
+    EXPECT_NE(std::string(e.what()).find("flow3d"), std::string::npos);
+  }
+  try {
+    load_scene_text(scene("render_scale = 2.0"), "fire.toml");
+    FAIL() << "accepted render_scale = 2";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "element[0].render_scale");
+  }
+  try {
+    load_scene_text(scene("profile = \"no-such-profile.png\""), "/tmp/fire.toml");
+    FAIL() << "accepted a missing profile";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "element[0].profile");
+  }
+}
+
+TEST(PerlinFire, EveryBuiltInFireSceneLoads) {
+  for (const char* name : {"perlin-fireplace", "bench-perlinfire-1", "bench-perlinfire-3"}) {
+    SCOPED_TRACE(name);
+    const SceneDesc d = load_builtin_scene(name);
+    EXPECT_GE(d.elements.size(), 1u);
+  }
+}
+
+}  // namespace
+}  // namespace candela
