@@ -1,11 +1,393 @@
-// The kiosk: DRM/KMS + GBM + EGL. (First slice: not yet implemented.)
+// The kiosk: DRM/KMS + GBM + EGL. Renders into a GBM surface and shows
+// each frame with a page flip (atomic, or legacy where atomic is missing),
+// paced by the display's vertical blank. Restores the CRTC it found on exit.
+#include <drm_fourcc.h>
+#include <gbm.h>
+#include <poll.h>
+#include <xf86drm.h>
+#include <xf86drmMode.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <optional>
+#include <vector>
+
 #include "core/error.h"
+#include "core/log.h"
 #include "display/display.h"
+#include "display/drm_kms.h"
+#include "display/egl_context.h"
+#include "gl/gles.h"
 
 namespace candela {
+namespace {
 
-std::unique_ptr<Display> open_drm_display(const DisplayOptions&) {
-  throw RuntimeError("drm: not implemented yet");
+constexpr uint32_t kFormat = GBM_FORMAT_XRGB8888;  // == DRM_FORMAT_XRGB8888
+constexpr int kFlipTimeoutMs = 2000;
+
+std::string errno_string(int e) { return std::strerror(e); }
+
+// The DRM framebuffer made for a GBM buffer, removed when GBM frees the buffer.
+struct BufferFb {
+  int fd;
+  uint32_t fb_id;
+  static void destroy(gbm_bo*, void* data) {
+    auto* self = static_cast<BufferFb*>(data);
+    drmModeRmFB(self->fd, self->fb_id);
+    delete self;
+  }
+};
+
+class DrmDisplay final : public Display {
+ public:
+  explicit DrmDisplay(const DisplayOptions& options) : out_(open_kms_output(options, kFormat)) {
+    width_ = out_.mode.hdisplay;
+    height_ = out_.mode.vdisplay;
+    saved_crtc_ = drmModeGetCrtc(out_.fd, out_.crtc_id);
+    if (!options.vsync) LOG_INFO("drm: vsync cannot be turned off on KMS; flips stay vblank-paced");
+    try {
+      init_gbm_egl();
+      if (out_.atomic) {
+        req_ = drmModeAtomicAlloc();
+        if (drmModeCreatePropertyBlob(out_.fd, &out_.mode, sizeof out_.mode, &mode_blob_) != 0) {
+          LOG_WARN("drm: cannot create a mode blob (%s): falling back to legacy modesetting",
+                   errno_string(errno).c_str());
+          out_.atomic = false;
+        }
+      }
+    } catch (...) {
+      release();
+      throw;
+    }
+    event_context_.version = 2;
+    event_context_.page_flip_handler = &DrmDisplay::on_page_flip;
+  }
+
+  ~DrmDisplay() override {
+    try {
+      wait_for_flip();
+    } catch (const std::exception& e) {
+      LOG_WARN("%s", e.what());
+    }
+    restore_crtc();
+    LOG_INFO(
+        "drm: presented %llu frames (1 modeset + %llu page flips completed), %lld vblanks missed",
+        static_cast<unsigned long long>(presented_), static_cast<unsigned long long>(flips_done_),
+        static_cast<long long>(missed_));
+    release();
+  }
+
+  std::string_view name() const override { return "drm"; }
+  int width() const override { return width_; }
+  int height() const override { return height_; }
+  bool paced_by_vsync() const override { return true; }
+  int64_t missed_vblanks() const override { return missed_; }
+
+  void begin_frame() override {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, width_, height_);
+  }
+
+  void present() override {
+    if (!eglSwapBuffers(egl_->display(), egl_surface_))
+      throw RuntimeError("drm: eglSwapBuffers failed: " + egl_error_string(eglGetError()));
+    gbm_bo* bo = gbm_surface_lock_front_buffer(surface_);
+    if (!bo) throw RuntimeError("drm: gbm_surface_lock_front_buffer failed");
+    const uint32_t fb = framebuffer_for(bo);
+    if (!fb) {
+      gbm_surface_release_buffer(surface_, bo);
+      throw RuntimeError("drm: cannot make a framebuffer for a GBM buffer");
+    }
+    if (presented_ == 0) {
+      modeset(fb);
+      front_ = bo;
+    } else {
+      // One flip in flight at a time: committing while one is pending gives
+      // EBUSY. Waiting here, not after the commit, lets the next frame render
+      // while this one waits for its vblank.
+      wait_for_flip();
+      queue_flip(fb);
+      pending_ = bo;
+    }
+    ++presented_;
+  }
+
+  bool poll_events(DisplayEvents&) override { return true; }
+
+  void finish() override { wait_for_flip(); }
+
+ private:
+  void init_gbm_egl() {
+    gbm_ = gbm_create_device(out_.fd);
+    if (!gbm_) throw RuntimeError("drm: gbm_create_device failed on " + out_.device);
+    if (!egl_has_extension(EGL_NO_DISPLAY, "EGL_KHR_platform_gbm") &&
+        !egl_has_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_gbm"))
+      throw RuntimeError("drm: EGL has no GBM platform (install libegl-mesa0)");
+    auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+        eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    if (!get_platform_display) throw RuntimeError("drm: no eglGetPlatformDisplayEXT");
+    egl_.emplace(get_platform_display(EGL_PLATFORM_GBM_KHR, gbm_, nullptr), EGL_WINDOW_BIT,
+                 static_cast<EGLint>(kFormat));
+
+    // Modifiers both the plane scans out and EGL renders to.
+    std::vector<uint64_t> mods = out_.modifiers;
+    mods.erase(std::remove(mods.begin(), mods.end(), DRM_FORMAT_MOD_INVALID), mods.end());
+    if (!mods.empty() &&
+        egl_has_extension(egl_->display(), "EGL_EXT_image_dma_buf_import_modifiers")) {
+      auto query = reinterpret_cast<PFNEGLQUERYDMABUFMODIFIERSEXTPROC>(
+          eglGetProcAddress("eglQueryDmaBufModifiersEXT"));
+      EGLint n = 0;
+      if (query && query(egl_->display(), kFormat, 0, nullptr, nullptr, &n) && n > 0) {
+        std::vector<EGLuint64KHR> egl_mods(static_cast<size_t>(n));
+        std::vector<EGLBoolean> external(static_cast<size_t>(n));
+        query(egl_->display(), kFormat, n, egl_mods.data(), external.data(), &n);
+        std::vector<uint64_t> common;
+        for (uint64_t m : mods)
+          for (EGLint i = 0; i < n; ++i)
+            if (egl_mods[static_cast<size_t>(i)] == m && !external[static_cast<size_t>(i)])
+              common.push_back(m);
+        LOG_INFO("drm: plane offers %zu modifiers for XRGB8888, EGL %d, %zu in common", mods.size(),
+                 n, common.size());
+        mods = std::move(common);
+      }
+    }
+    if (!mods.empty()) {
+      surface_ = gbm_surface_create_with_modifiers(gbm_, static_cast<uint32_t>(width_),
+                                                   static_cast<uint32_t>(height_), kFormat,
+                                                   mods.data(), static_cast<unsigned>(mods.size()));
+      if (!surface_)
+        LOG_INFO(
+            "drm: GBM cannot allocate with the plane's modifiers (%s): falling back to an "
+            "implicit scan-out buffer",
+            errno_string(errno).c_str());
+    } else {
+      LOG_INFO("drm: no modifier list to negotiate: letting GBM pick a scan-out buffer");
+    }
+    if (!surface_)
+      surface_ =
+          gbm_surface_create(gbm_, static_cast<uint32_t>(width_), static_cast<uint32_t>(height_),
+                             kFormat, GBM_BO_USE_SCANOUT | GBM_BO_USE_RENDERING);
+    if (!surface_)
+      throw RuntimeError("drm: cannot create a " + std::to_string(width_) + "x" +
+                         std::to_string(height_) + " GBM scan-out surface: " + errno_string(errno));
+
+    auto create_surface = reinterpret_cast<PFNEGLCREATEPLATFORMWINDOWSURFACEEXTPROC>(
+        eglGetProcAddress("eglCreatePlatformWindowSurfaceEXT"));
+    egl_surface_ =
+        create_surface
+            ? create_surface(egl_->display(), egl_->config(), surface_, nullptr)
+            : eglCreateWindowSurface(egl_->display(), egl_->config(),
+                                     reinterpret_cast<EGLNativeWindowType>(surface_), nullptr);
+    if (egl_surface_ == EGL_NO_SURFACE)
+      throw RuntimeError("drm: cannot create an EGL surface on GBM: " +
+                         egl_error_string(eglGetError()));
+    egl_->make_current(egl_surface_);
+  }
+
+  // The framebuffer of a GBM buffer, made once per buffer (GBM reuses a few).
+  uint32_t framebuffer_for(gbm_bo* bo) {
+    if (auto* known = static_cast<BufferFb*>(gbm_bo_get_user_data(bo))) return known->fb_id;
+    const uint32_t w = gbm_bo_get_width(bo), h = gbm_bo_get_height(bo);
+    const uint32_t format = gbm_bo_get_format(bo);
+    const uint64_t modifier = gbm_bo_get_modifier(bo);
+    const int planes = std::min(gbm_bo_get_plane_count(bo), 4);
+    uint32_t handles[4] = {}, strides[4] = {}, offsets[4] = {};
+    uint64_t modifiers[4] = {};
+    for (int i = 0; i < planes; ++i) {
+      handles[i] = gbm_bo_get_handle_for_plane(bo, i).u32;
+      strides[i] = gbm_bo_get_stride_for_plane(bo, i);
+      offsets[i] = gbm_bo_get_offset(bo, i);
+      modifiers[i] = modifier;
+    }
+    uint32_t fb = 0;
+    // An explicit modifier only when there is one: LINEAR or INVALID go
+    // without, which every driver takes (vkms rejects an invalid modifier).
+    if (modifier != DRM_FORMAT_MOD_INVALID && modifier != DRM_FORMAT_MOD_LINEAR &&
+        out_.addfb2_modifiers) {
+      if (drmModeAddFB2WithModifiers(out_.fd, w, h, format, handles, strides, offsets, modifiers,
+                                     &fb, DRM_MODE_FB_MODIFIERS) != 0) {
+        LOG_WARN("drm: AddFB2 with modifier 0x%llx failed (%s): trying without",
+                 static_cast<unsigned long long>(modifier), errno_string(errno).c_str());
+        fb = 0;
+      }
+    } else if (!logged_plain_fb_) {
+      logged_plain_fb_ = true;
+      LOG_INFO("drm: buffer modifier is %s: adding framebuffers without modifiers",
+               modifier == DRM_FORMAT_MOD_INVALID ? "INVALID" : "LINEAR");
+    }
+    if (!fb && drmModeAddFB2(out_.fd, w, h, format, handles, strides, offsets, &fb, 0) != 0) {
+      LOG_ERROR("drm: drmModeAddFB2 %ux%u failed: %s", w, h, errno_string(errno).c_str());
+      return 0;
+    }
+    gbm_bo_set_user_data(bo, new BufferFb{out_.fd, fb}, &BufferFb::destroy);
+    return fb;
+  }
+
+  void modeset(uint32_t fb) {
+    if (out_.atomic) {
+      const KmsPropertyIds& p = out_.props;
+      drmModeAtomicSetCursor(req_, 0);
+      drmModeAtomicAddProperty(req_, out_.connector_id, p.connector_crtc_id, out_.crtc_id);
+      drmModeAtomicAddProperty(req_, out_.crtc_id, p.crtc_mode_id, mode_blob_);
+      drmModeAtomicAddProperty(req_, out_.crtc_id, p.crtc_active, 1);
+      add_plane_properties(fb);
+      // Blocking and without an event: the next present() flips onto it.
+      if (drmModeAtomicCommit(out_.fd, req_, DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr) == 0) {
+        LOG_INFO("drm: atomic modeset %s on %s done", describe_mode(out_.mode).c_str(),
+                 out_.connector_name.c_str());
+        return;
+      }
+      LOG_WARN("drm: atomic modeset failed (%s): falling back to legacy modesetting",
+               errno_string(errno).c_str());
+      out_.atomic = false;
+    }
+    uint32_t connector = out_.connector_id;
+    if (drmModeSetCrtc(out_.fd, out_.crtc_id, fb, 0, 0, &connector, 1, &out_.mode) != 0)
+      throw RuntimeError("drm: cannot set mode " + describe_mode(out_.mode) + " on " +
+                         out_.connector_name + ": " + errno_string(errno));
+    LOG_INFO("drm: legacy modeset %s on %s done", describe_mode(out_.mode).c_str(),
+             out_.connector_name.c_str());
+  }
+
+  void add_plane_properties(uint32_t fb) {
+    const KmsPropertyIds& p = out_.props;
+    const uint32_t plane = out_.plane_id;
+    const uint64_t w = static_cast<uint64_t>(width_), h = static_cast<uint64_t>(height_);
+    drmModeAtomicAddProperty(req_, plane, p.plane_fb_id, fb);
+    drmModeAtomicAddProperty(req_, plane, p.plane_crtc_id, out_.crtc_id);
+    drmModeAtomicAddProperty(req_, plane, p.plane_src_x, 0);
+    drmModeAtomicAddProperty(req_, plane, p.plane_src_y, 0);
+    drmModeAtomicAddProperty(req_, plane, p.plane_src_w, w << 16);
+    drmModeAtomicAddProperty(req_, plane, p.plane_src_h, h << 16);
+    drmModeAtomicAddProperty(req_, plane, p.plane_crtc_x, 0);
+    drmModeAtomicAddProperty(req_, plane, p.plane_crtc_y, 0);
+    drmModeAtomicAddProperty(req_, plane, p.plane_crtc_w, w);
+    drmModeAtomicAddProperty(req_, plane, p.plane_crtc_h, h);
+  }
+
+  void queue_flip(uint32_t fb) {
+    if (out_.atomic) {
+      drmModeAtomicSetCursor(req_, 0);  // reuses the request's memory: no allocation per frame
+      add_plane_properties(fb);
+      if (drmModeAtomicCommit(out_.fd, req_, DRM_MODE_ATOMIC_NONBLOCK | DRM_MODE_PAGE_FLIP_EVENT,
+                              this) == 0) {
+        flip_pending_ = true;
+        return;
+      }
+      LOG_WARN("drm: atomic page flip failed (%s): falling back to legacy page flips",
+               errno_string(errno).c_str());
+      out_.atomic = false;
+    }
+    if (drmModePageFlip(out_.fd, out_.crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, this) != 0)
+      throw RuntimeError("drm: page flip on " + out_.connector_name +
+                         " failed: " + errno_string(errno));
+    flip_pending_ = true;
+  }
+
+  void wait_for_flip() {
+    while (flip_pending_) {
+      pollfd p{out_.fd, POLLIN, 0};
+      const int r = poll(&p, 1, kFlipTimeoutMs);
+      if (r < 0) {
+        if (errno == EINTR) continue;
+        throw RuntimeError("drm: poll on " + out_.device + " failed: " + errno_string(errno));
+      }
+      if (r == 0) {
+        flip_pending_ = false;  // do not wait for it again
+        throw RuntimeError("drm: a page flip did not complete within " +
+                           std::to_string(kFlipTimeoutMs) + " ms");
+      }
+      if (drmHandleEvent(out_.fd, &event_context_) != 0)
+        throw RuntimeError("drm: reading DRM events failed: " + errno_string(errno));
+    }
+  }
+
+  static void on_page_flip(int, unsigned sequence, unsigned, unsigned, void* data) {
+    auto* self = static_cast<DrmDisplay*>(data);
+    self->flip_pending_ = false;
+    if (self->front_) gbm_surface_release_buffer(self->surface_, self->front_);
+    self->front_ = self->pending_;
+    self->pending_ = nullptr;
+    // The flip event carries the vblank counter: a gap of more than one
+    // between flips means vblanks went by showing an old frame.
+    if (self->flips_done_ > 0) {
+      const uint32_t gap = sequence - self->last_sequence_;
+      if (gap > 1) self->missed_ += gap - 1;
+    }
+    self->last_sequence_ = sequence;
+    ++self->flips_done_;
+  }
+
+  void restore_crtc() {
+    if (presented_ == 0) return;  // never touched the display
+    int rc;
+    std::string what;
+    if (saved_crtc_ && saved_crtc_->mode_valid && saved_crtc_->buffer_id) {
+      uint32_t connector = out_.connector_id;
+      rc = drmModeSetCrtc(out_.fd, saved_crtc_->crtc_id, saved_crtc_->buffer_id, saved_crtc_->x,
+                          saved_crtc_->y, &connector, 1, &saved_crtc_->mode);
+      what = describe_mode(saved_crtc_->mode) + ", framebuffer " +
+             std::to_string(saved_crtc_->buffer_id);
+    } else {
+      rc = drmModeSetCrtc(out_.fd, out_.crtc_id, 0, 0, 0, nullptr, 0, nullptr);
+      what = "off";
+    }
+    if (rc == 0)
+      LOG_INFO("drm: restored CRTC %u to its previous state (%s)", out_.crtc_id, what.c_str());
+    else
+      LOG_WARN("drm: could not restore CRTC %u to its previous state (%s): %s", out_.crtc_id,
+               what.c_str(), errno_string(errno).c_str());
+  }
+
+  void release() {
+    if (egl_ && egl_surface_ != EGL_NO_SURFACE) {
+      eglMakeCurrent(egl_->display(), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      eglDestroySurface(egl_->display(), egl_surface_);
+      egl_surface_ = EGL_NO_SURFACE;
+    }
+    if (surface_) {
+      if (pending_) gbm_surface_release_buffer(surface_, pending_);
+      if (front_) gbm_surface_release_buffer(surface_, front_);
+      pending_ = front_ = nullptr;
+      gbm_surface_destroy(surface_);  // removes the framebuffers (BufferFb::destroy)
+      surface_ = nullptr;
+    }
+    egl_.reset();
+    if (gbm_) gbm_device_destroy(gbm_);
+    gbm_ = nullptr;
+    if (req_) drmModeAtomicFree(req_);
+    req_ = nullptr;
+    if (mode_blob_) drmModeDestroyPropertyBlob(out_.fd, mode_blob_);
+    mode_blob_ = 0;
+    if (saved_crtc_) drmModeFreeCrtc(saved_crtc_);
+    saved_crtc_ = nullptr;
+  }
+
+  KmsOutput out_;  // closes the card and drops master last
+  int width_ = 0, height_ = 0;
+  drmModeCrtc* saved_crtc_ = nullptr;
+  gbm_device* gbm_ = nullptr;
+  gbm_surface* surface_ = nullptr;
+  std::optional<EglContext> egl_;
+  EGLSurface egl_surface_ = EGL_NO_SURFACE;
+  drmModeAtomicReq* req_ = nullptr;
+  uint32_t mode_blob_ = 0;
+  drmEventContext event_context_{};
+  gbm_bo* front_ = nullptr;    // on screen
+  gbm_bo* pending_ = nullptr;  // queued to flip at the next vblank
+  bool flip_pending_ = false;
+  bool logged_plain_fb_ = false;
+  uint64_t presented_ = 0;
+  uint64_t flips_done_ = 0;
+  uint32_t last_sequence_ = 0;
+  int64_t missed_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Display> open_drm_display(const DisplayOptions& options) {
+  return std::make_unique<DrmDisplay>(options);
 }
 
 }  // namespace candela

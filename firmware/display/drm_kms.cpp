@@ -1,0 +1,373 @@
+#include "display/drm_kms.h"
+
+#include <dirent.h>
+#include <fcntl.h>
+#include <unistd.h>
+#include <xf86drm.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <utility>
+
+#include "core/error.h"
+#include "core/log.h"
+
+namespace candela {
+namespace {
+
+struct ResourcesDeleter {
+  void operator()(drmModeRes* p) const { drmModeFreeResources(p); }
+};
+struct ConnectorDeleter {
+  void operator()(drmModeConnector* p) const { drmModeFreeConnector(p); }
+};
+struct EncoderDeleter {
+  void operator()(drmModeEncoder* p) const { drmModeFreeEncoder(p); }
+};
+struct PlaneResDeleter {
+  void operator()(drmModePlaneRes* p) const { drmModeFreePlaneResources(p); }
+};
+struct PlaneDeleter {
+  void operator()(drmModePlane* p) const { drmModeFreePlane(p); }
+};
+struct PropsDeleter {
+  void operator()(drmModeObjectProperties* p) const { drmModeFreeObjectProperties(p); }
+};
+struct PropDeleter {
+  void operator()(drmModePropertyRes* p) const { drmModeFreeProperty(p); }
+};
+struct BlobDeleter {
+  void operator()(drmModePropertyBlobRes* p) const { drmModeFreePropertyBlob(p); }
+};
+struct VersionDeleter {
+  void operator()(drmVersion* p) const { drmFreeVersion(p); }
+};
+using Resources = std::unique_ptr<drmModeRes, ResourcesDeleter>;
+using Connector = std::unique_ptr<drmModeConnector, ConnectorDeleter>;
+using Encoder = std::unique_ptr<drmModeEncoder, EncoderDeleter>;
+using PlaneRes = std::unique_ptr<drmModePlaneRes, PlaneResDeleter>;
+using Plane = std::unique_ptr<drmModePlane, PlaneDeleter>;
+using ObjectProps = std::unique_ptr<drmModeObjectProperties, PropsDeleter>;
+using Property = std::unique_ptr<drmModePropertyRes, PropDeleter>;
+using Blob = std::unique_ptr<drmModePropertyBlobRes, BlobDeleter>;
+
+class Fd {
+ public:
+  explicit Fd(int fd) : fd_(fd) {}
+  ~Fd() {
+    if (fd_ >= 0) close(fd_);
+  }
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  int get() const { return fd_; }
+  int release() { return std::exchange(fd_, -1); }
+
+ private:
+  int fd_;
+};
+
+std::string connector_name(const drmModeConnector& c) {
+  const char* type = drmModeGetConnectorTypeName(c.connector_type);
+  return std::string(type ? type : "Unknown") + "-" + std::to_string(c.connector_type_id);
+}
+
+const char* connection_name(drmModeConnection c) {
+  switch (c) {
+    case DRM_MODE_CONNECTED:
+      return "connected";
+    case DRM_MODE_DISCONNECTED:
+      return "disconnected";
+    default:
+      return "unknown";
+  }
+}
+
+// Looks up property ids (and optionally a value) of one KMS object by name.
+class PropertyTable {
+ public:
+  PropertyTable(int fd, uint32_t object, uint32_t type)
+      : fd_(fd), props_(drmModeObjectGetProperties(fd, object, type)) {}
+  uint32_t id(const char* name) const { return find(name, nullptr); }
+  bool value(const char* name, uint64_t& out) const { return find(name, &out) != 0; }
+
+ private:
+  uint32_t find(const char* name, uint64_t* value) const {
+    if (!props_) return 0;
+    for (uint32_t i = 0; i < props_->count_props; ++i) {
+      Property p(drmModeGetProperty(fd_, props_->props[i]));
+      if (p && std::strcmp(p->name, name) == 0) {
+        if (value) *value = props_->prop_values[i];
+        return p->prop_id;
+      }
+    }
+    return 0;
+  }
+  int fd_;
+  ObjectProps props_;
+};
+
+// The CRTC to drive the connector with: the one already driving it if any,
+// else the first one an encoder of the connector can use.
+int pick_crtc(int fd, const drmModeRes& res, const drmModeConnector& conn, uint32_t& crtc_id) {
+  if (conn.encoder_id) {
+    Encoder enc(drmModeGetEncoder(fd, conn.encoder_id));
+    if (enc && enc->crtc_id)
+      for (int i = 0; i < res.count_crtcs; ++i)
+        if (res.crtcs[i] == enc->crtc_id) {
+          crtc_id = enc->crtc_id;
+          return i;
+        }
+  }
+  for (int e = 0; e < conn.count_encoders; ++e) {
+    Encoder enc(drmModeGetEncoder(fd, conn.encoders[e]));
+    if (!enc) continue;
+    for (int i = 0; i < res.count_crtcs; ++i)
+      if (enc->possible_crtcs & (1u << i)) {
+        crtc_id = res.crtcs[i];
+        return i;
+      }
+  }
+  return -1;
+}
+
+const drmModeModeInfo* pick_mode(const drmModeConnector& conn, const DisplayOptions& o,
+                                 const std::string& name) {
+  const drmModeModeInfo* preferred = &conn.modes[0];
+  for (int i = 0; i < conn.count_modes; ++i)
+    if (conn.modes[i].type & DRM_MODE_TYPE_PREFERRED) {
+      preferred = &conn.modes[i];
+      break;
+    }
+  if (o.width <= 0 && o.refresh_hz <= 0) return preferred;
+  const int want_w = o.width > 0 ? o.width : preferred->hdisplay;
+  const int want_h = o.height > 0 ? o.height : preferred->vdisplay;
+  const drmModeModeInfo* best = nullptr;
+  for (int i = 0; i < conn.count_modes; ++i) {
+    const drmModeModeInfo& m = conn.modes[i];
+    if (m.hdisplay != want_w || m.vdisplay != want_h) continue;
+    if (o.refresh_hz > 0 && static_cast<int>(m.vrefresh) != o.refresh_hz) continue;
+    if (m.flags & DRM_MODE_FLAG_INTERLACE) continue;
+    // Among equals the preferred one, else the highest refresh.
+    if (!best || (m.type & DRM_MODE_TYPE_PREFERRED) ||
+        (!(best->type & DRM_MODE_TYPE_PREFERRED) && m.vrefresh > best->vrefresh))
+      best = &m;
+  }
+  if (best) return best;
+  LOG_WARN("drm: %s has no mode %dx%d%s; using its preferred mode %s", name.c_str(), want_w, want_h,
+           o.refresh_hz > 0 ? ("@" + std::to_string(o.refresh_hz)).c_str() : "",
+           describe_mode(*preferred).c_str());
+  return preferred;
+}
+
+// The modifiers the plane's IN_FORMATS blob lists for `format`.
+std::vector<uint64_t> plane_modifiers(int fd, uint32_t plane_id, uint32_t format) {
+  std::vector<uint64_t> mods;
+  PropertyTable props(fd, plane_id, DRM_MODE_OBJECT_PLANE);
+  uint64_t blob_id = 0;
+  if (!props.value("IN_FORMATS", blob_id) || blob_id == 0) return mods;
+  Blob blob(drmModeGetPropertyBlob(fd, static_cast<uint32_t>(blob_id)));
+  if (!blob) return mods;
+  drmModeFormatModifierIterator it{};
+  while (drmModeFormatModifierBlobIterNext(blob.get(), &it))
+    if (it.fmt == format) mods.push_back(it.mod);
+  return mods;
+}
+
+std::string card_list_error(const std::string& tried) {
+  return "drm: no display to show on:" + tried;
+}
+
+}  // namespace
+
+bool KmsPropertyIds::complete() const {
+  return connector_crtc_id && crtc_mode_id && crtc_active && plane_fb_id && plane_crtc_id &&
+         plane_src_x && plane_src_y && plane_src_w && plane_src_h && plane_crtc_x && plane_crtc_y &&
+         plane_crtc_w && plane_crtc_h;
+}
+
+KmsOutput::KmsOutput(KmsOutput&& o) noexcept
+    : fd(std::exchange(o.fd, -1)),
+      device(std::move(o.device)),
+      driver(std::move(o.driver)),
+      connector_id(o.connector_id),
+      connector_name(std::move(o.connector_name)),
+      crtc_id(o.crtc_id),
+      plane_id(o.plane_id),
+      mode(o.mode),
+      atomic(o.atomic),
+      addfb2_modifiers(o.addfb2_modifiers),
+      modifiers(std::move(o.modifiers)),
+      props(o.props) {}
+
+KmsOutput::~KmsOutput() {
+  if (fd >= 0) {
+    // Leave the display to whoever comes next (a console, another kiosk).
+    if (drmIsMaster(fd)) drmDropMaster(fd);
+    close(fd);
+  }
+}
+
+std::string describe_mode(const drmModeModeInfo& m) {
+  return std::to_string(m.hdisplay) + "x" + std::to_string(m.vdisplay) + "@" +
+         std::to_string(m.vrefresh) + ((m.type & DRM_MODE_TYPE_PREFERRED) ? " (preferred)" : "");
+}
+
+KmsOutput open_kms_output(const DisplayOptions& options, uint32_t format) {
+  std::vector<std::string> devices;
+  if (!options.drm_device.empty()) {
+    devices.push_back(options.drm_device);
+  } else {
+    if (DIR* dir = opendir("/dev/dri")) {
+      while (dirent* e = readdir(dir))
+        if (std::strncmp(e->d_name, "card", 4) == 0)
+          devices.push_back(std::string("/dev/dri/") + e->d_name);
+      closedir(dir);
+    }
+    // card10 after card9; the order of cards is not stable across boots anyway
+    // (a Pi's v3d and vc4 swap places), so every card is looked at.
+    std::sort(devices.begin(), devices.end(), [](const std::string& a, const std::string& b) {
+      return a.size() != b.size() ? a.size() < b.size() : a < b;
+    });
+    if (devices.empty())
+      throw RuntimeError(
+          "drm: no /dev/dri/card* device (is a KMS driver loaded? On a Raspberry Pi: "
+          "dtoverlay=vc4-kms-v3d)");
+  }
+
+  const bool force_legacy = [] {
+    const char* v = std::getenv("CANDELA_DRM_LEGACY");
+    return v && *v && std::strcmp(v, "0") != 0;
+  }();
+
+  std::string tried;
+  for (const std::string& path : devices) {
+    Fd fd(open(path.c_str(), O_RDWR | O_CLOEXEC));
+    if (fd.get() < 0) {
+      const int e = errno;
+      tried += "\n  " + path + ": " + std::strerror(e) +
+               (e == EACCES ? " (add the user to the 'video' group)" : "");
+      LOG_INFO("drm: skipping %s: %s", path.c_str(), std::strerror(e));
+      continue;
+    }
+    std::unique_ptr<drmVersion, VersionDeleter> version(drmGetVersion(fd.get()));
+    const std::string driver = version && version->name ? version->name : "?";
+    // Universal planes before resources, so the primary plane is listed.
+    const bool universal = drmSetClientCap(fd.get(), DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) == 0;
+    Resources res(drmModeGetResources(fd.get()));
+    if (!res) {
+      tried += "\n  " + path + " (" + driver + "): render-only device, no KMS";
+      LOG_INFO("drm: skipping %s (%s): render-only, no KMS resources", path.c_str(),
+               driver.c_str());
+      continue;
+    }
+    Connector conn;
+    std::string states;
+    for (int i = 0; i < res->count_connectors && !conn; ++i) {
+      Connector c(drmModeGetConnector(fd.get(), res->connectors[i]));
+      if (!c) continue;
+      states +=
+          (states.empty() ? "" : ", ") + connector_name(*c) + " " + connection_name(c->connection);
+      if (c->connection == DRM_MODE_CONNECTED && c->count_modes > 0) conn = std::move(c);
+    }
+    if (!conn) {
+      const std::string why =
+          states.empty() ? "no connectors" : "nothing connected (" + states + ")";
+      tried += "\n  " + path + " (" + driver + "): " + why;
+      LOG_INFO("drm: skipping %s (%s): %s", path.c_str(), driver.c_str(), why.c_str());
+      continue;
+    }
+    const std::string name = connector_name(*conn);
+    uint32_t crtc_id = 0;
+    const int crtc_index = pick_crtc(fd.get(), *res, *conn, crtc_id);
+    if (crtc_index < 0) {
+      tried += "\n  " + path + " (" + driver + "): no CRTC can drive " + name;
+      LOG_INFO("drm: skipping %s: no CRTC can drive %s", path.c_str(), name.c_str());
+      continue;
+    }
+
+    // The CRTC's primary plane, and whether it scans out `format`.
+    uint32_t plane_id = 0;
+    bool format_ok = !universal;  // legacy: the CRTC takes what AddFB2 accepted
+    if (universal) {
+      PlaneRes planes(drmModeGetPlaneResources(fd.get()));
+      for (uint32_t i = 0; planes && i < planes->count_planes && !plane_id; ++i) {
+        Plane p(drmModeGetPlane(fd.get(), planes->planes[i]));
+        if (!p || !(p->possible_crtcs & (1u << crtc_index))) continue;
+        uint64_t type = 0;
+        if (!PropertyTable(fd.get(), p->plane_id, DRM_MODE_OBJECT_PLANE).value("type", type) ||
+            type != DRM_PLANE_TYPE_PRIMARY)
+          continue;
+        plane_id = p->plane_id;
+        for (uint32_t f = 0; f < p->count_formats; ++f) format_ok |= p->formats[f] == format;
+      }
+      if (!plane_id) format_ok = true;  // no plane list: let the legacy path try
+    }
+    if (!format_ok) {
+      tried += "\n  " + path + ": the primary plane of " + name + " cannot show XRGB8888";
+      LOG_INFO("drm: skipping %s: primary plane cannot scan out XRGB8888", path.c_str());
+      continue;
+    }
+
+    // Since Linux 5.8 the first opener is master; otherwise someone else
+    // (a desktop, another kiosk) holds the display.
+    if (!drmIsMaster(fd.get()) && drmSetMaster(fd.get()) != 0) {
+      const int e = errno;
+      tried += "\n  " + path + ": cannot become DRM master (" + std::strerror(e) +
+               "): another program (a desktop, another candela) is showing on it";
+      LOG_INFO("drm: skipping %s: cannot become DRM master", path.c_str());
+      continue;
+    }
+
+    KmsOutput out;
+    out.device = path;
+    out.driver = driver;
+    out.connector_id = conn->connector_id;
+    out.connector_name = name;
+    out.crtc_id = crtc_id;
+    out.plane_id = plane_id;
+    out.mode = *pick_mode(*conn, options, name);
+    uint64_t cap = 0;
+    out.addfb2_modifiers = drmGetCap(fd.get(), DRM_CAP_ADDFB2_MODIFIERS, &cap) == 0 && cap;
+    if (plane_id) out.modifiers = plane_modifiers(fd.get(), plane_id, format);
+
+    if (force_legacy) {
+      LOG_INFO("drm: CANDELA_DRM_LEGACY set: using legacy modesetting");
+    } else if (!plane_id) {
+      LOG_INFO("drm: no universal planes: using legacy modesetting");
+    } else if (drmSetClientCap(fd.get(), DRM_CLIENT_CAP_ATOMIC, 1) != 0) {
+      LOG_INFO("drm: %s has no atomic modesetting: using legacy modesetting", driver.c_str());
+    } else {
+      KmsPropertyIds& p = out.props;
+      PropertyTable c(fd.get(), conn->connector_id, DRM_MODE_OBJECT_CONNECTOR);
+      p.connector_crtc_id = c.id("CRTC_ID");
+      PropertyTable cr(fd.get(), crtc_id, DRM_MODE_OBJECT_CRTC);
+      p.crtc_mode_id = cr.id("MODE_ID");
+      p.crtc_active = cr.id("ACTIVE");
+      PropertyTable pl(fd.get(), plane_id, DRM_MODE_OBJECT_PLANE);
+      p.plane_fb_id = pl.id("FB_ID");
+      p.plane_crtc_id = pl.id("CRTC_ID");
+      p.plane_src_x = pl.id("SRC_X");
+      p.plane_src_y = pl.id("SRC_Y");
+      p.plane_src_w = pl.id("SRC_W");
+      p.plane_src_h = pl.id("SRC_H");
+      p.plane_crtc_x = pl.id("CRTC_X");
+      p.plane_crtc_y = pl.id("CRTC_Y");
+      p.plane_crtc_w = pl.id("CRTC_W");
+      p.plane_crtc_h = pl.id("CRTC_H");
+      out.atomic = p.complete();
+      if (!out.atomic)
+        LOG_WARN("drm: atomic properties missing: falling back to legacy modesetting");
+    }
+    LOG_INFO("drm: %s (%s), connector %s, mode %s, CRTC %u, plane %u, %s", path.c_str(),
+             driver.c_str(), name.c_str(), describe_mode(out.mode).c_str(), crtc_id, plane_id,
+             out.atomic ? "atomic" : "legacy");
+    out.fd = fd.release();
+    return out;
+  }
+  throw RuntimeError(card_list_error(tried));
+}
+
+}  // namespace candela
