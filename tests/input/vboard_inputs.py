@@ -46,7 +46,7 @@ def wait_for(what, fn, timeout=20.0, interval=0.02):
 
 
 class Candela:
-    def __init__(self, scene_toml, extra=()):
+    def __init__(self, scene_toml, extra=(), nice=0):
         self.scene = os.path.join(WORK, "scene.toml")
         with open(self.scene, "w") as f:
             f.write(scene_toml)
@@ -54,7 +54,7 @@ class Candela:
         self.log_path = os.path.join(WORK, "candela.log")
         self.log = open(self.log_path, "w")
         self.proc = subprocess.Popen(
-            [CANDELA, "--display", "headless", "--size", "32x24", "--scene", self.scene,
+            ["nice", "-n", str(nice), CANDELA, "--display", "headless", "--size", "32x24", "--scene", self.scene,
              "--control", self.sock_path, *extra], stdout=self.log, stderr=subprocess.STDOUT)
         self.sock = None
         wait_for("the control socket", self._connect, timeout=60)
@@ -168,25 +168,32 @@ def case_gpio_anemometer_rate():
     rate, cal = 5.0, 0.5
     c = Candela(gpio_scene(['kind = "anemometer"\nname = "a"\nchip = "vboard-gpio"\n'
                             'line_name = "sim5"\ncalibration = %g\nwindow_s = 2.0\n'
-                            'debounce_ms = 2\nside = "left"\n' % cal], wind="speed = 0.0\n"))
+                            'debounce_ms = 2\nside = "left"\n' % cal], wind="speed = 0.0\n"),
+               nice=15)
     wait_for("the anemometer line", lambda: c.input("a")["status"] == "ok")
+    # candela's headless loop renders flat out on the VM's one CPU: let the
+    # pulse generator come first so the train keeps its rate.
     period = 1.0 / rate
     start = time.monotonic() + 0.1
-    readings = []
-    for k in range(int(4.5 * rate)):
+    ups, errors = [], []
+    for k in range(int(5 * rate)):
         at = start + k * period  # absolute deadlines: no drift in the mean rate
         while time.monotonic() < at:
             time.sleep(min(0.005, max(0.0, at - time.monotonic())))
+        ups.append(time.monotonic())
         pull(5, True)
         while time.monotonic() < at + 0.04:
             time.sleep(0.005)
         pull(5, False)
-        if k * period > 2.5:  # the 2 s window is full of pulses
-            readings.append(c.state()["wind"]["x"])
-    want = rate * cal
-    worst = max(abs(r - want) / want for r in readings)
-    print("anemometer: %d Hz -> %s m/s (want %.3f)" % (rate, ["%.3f" % r for r in readings], want))
-    check(worst < 0.05, "anemometer speed within 5%% of %.3f m/s (worst %.1f%%)" % (want, worst * 100))
+        if k * period > 2.5 and k % 4 == 0:  # the 2 s window is full of pulses
+            got = c.state()["wind"]["x"]
+            window = [t for t in ups if t > ups[-1] - 2.0]
+            made = (len(window) - 1) / (window[-1] - window[0])
+            errors.append(abs(got - made * cal) / (made * cal))
+            print("anemometer: train %.3f Hz (nominal %g) -> %.3f m/s, want %.3f" %
+                  (made, rate, got, made * cal), flush=True)
+            check(abs(made - rate) / rate < 0.1, "the generator kept the rate (%.3f Hz)" % made)
+    check(max(errors) < 0.05, "anemometer speed within 5%% (worst %.1f%%)" % (max(errors) * 100))
     # The wind stops: the speed falls to nothing.
     wait_for("the wind to drop", lambda: c.state()["wind"]["x"] == 0, timeout=10)
     check(True, "calm again after the pulses stop")

@@ -195,6 +195,7 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
   }
   const std::vector<Locked> locked = lock_controls(*cap, o);
   const std::vector<V4l2Control> controls = cap->controls();
+  const std::string card = cap->card(), driver = cap->driver();
   const int channels = o.color ? 3 : 1;
   const double fps = f.fps > 0 ? f.fps : o.fps;
 
@@ -203,7 +204,7 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
   std::snprintf(info, sizeof info,
                 "%s: recorded by candela-record from %s (%s), %dx%d %s at %g fps; %s PNG frames "
                 "in frames/; details in manifest.json\n",
-                clip.c_str(), o.device.c_str(), cap->card().c_str(), f.width, f.height,
+                clip.c_str(), o.device.c_str(), card.c_str(), f.width, f.height,
                 fourcc_name(f.fourcc).c_str(), fps, o.color ? "RGB" : "gray");
   try {
     write_atomic((out / "info.txt").string(), info);
@@ -280,7 +281,7 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
                   "  \"width\": %d,\n  \"height\": %d,\n  \"pixel_format\": \"%s\",\n"
                   "  \"png\": \"%s\",\n  \"fps\": %g,\n  \"requested_fps\": %d,\n",
                   json_string(clip).c_str(), json_string(o.device).c_str(),
-                  json_string(cap->card()).c_str(), json_string(cap->driver()).c_str(),
+                  json_string(card).c_str(), json_string(driver).c_str(),
                   started.c_str(), f.width, f.height, fourcc_name(f.fourcc).c_str(),
                   o.color ? "rgb8" : "gray8", fps, o.fps);
     const std::string text =
