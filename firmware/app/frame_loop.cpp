@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/clock.h"
+#include "input/input_hub.h"
 
 namespace candela {
 
@@ -35,6 +36,7 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
       result.quit_requested = true;
       break;
     }
+    if (s.inputs) s.inputs->drain(scene.wind());
     const auto begin = Clock::now();
     if (result.frames > 0) {
       const int due =
@@ -50,6 +52,7 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
     frame.height = display.height();
     frame.frame = result.frames;
     frame.step = clock.steps() - 1;
+    if (s.inputs) s.inputs->publish(clock.steps(), result.frames, scene.wind().sample({}));
     scene.draw(frame);
     display.present();
     const auto end = Clock::now();

@@ -13,12 +13,15 @@
 
 namespace candela {
 
+class InputHub;
+
 struct LoopSettings {
   uint64_t max_frames = 0;  // 0: until quit
   int steps_per_second = 60;
   int frames_per_second = 60;               // lockstep: steps per frame = steps_per_second / fps
   const std::atomic<bool>* stop = nullptr;  // set by a signal handler
   FrameStats* stats = nullptr;
+  InputHub* inputs = nullptr;  // sensors, camera, control socket: drained once per frame
 };
 
 struct LoopResult {

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "display/display.h"
+#include "input/input_hub.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
 
@@ -61,6 +62,9 @@ int main(int argc, char** argv) {
     ls.frames_per_second = opt.display.fps;
     ls.stop = &g_stop;
     ls.stats = &stats;
+    InputHub inputs(desc.inputs, desc.wind, opt.control);
+    inputs.start();
+    ls.inputs = &inputs;
     const double cpu0 = process_cpu_seconds();
     const LoopResult r = run_frame_loop(*display, scene, ls);
     const double cpu = process_cpu_seconds() - cpu0;

@@ -37,6 +37,9 @@ int parse_options(int argc, char** argv, Options& o) {
   app.add_flag("--list-elements", o.list_elements, "List the kinds of scene element and exit");
   app.add_option("--log-level", o.log_level, "debug, info, warn or error")
       ->check(CLI::IsMember({"debug", "info", "warn", "error"}));
+  app.add_option("--control", o.control,
+                 "Listen for wind commands and state queries on this UNIX socket (mode 0600); "
+                 "see README");
   bool no_vsync = false;
   app.add_flag("--no-vsync", no_vsync, "Do not wait for vertical blank (window)");
   try {

@@ -18,6 +18,7 @@ struct Options {
   uint64_t frames = 0;  // 0: run until quit
   uint64_t seed = 0;    // 0: the scene's seed
   std::string log_level = "info";
+  std::string control;  // control socket path (firmware/input/control_channel.h); empty: none
 };
 
 // Parses argv. Returns -1 to go on, or an exit status (after --help, or a

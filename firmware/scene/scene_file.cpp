@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "input/input_config.h"
 #include "scene/params.h"
 
 namespace candela::scenes {
@@ -78,6 +79,8 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
       scene.elements.push_back(std::move(e));
     }
   }
+  scene.inputs = parse_inputs(root.get("input"), name);
+  top.consume("input");
   top.finish();
   return scene;
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gl/math.h"
+#include "input/input_spec.h"
 #include "scene/element.h"
 #include "wind/wind_field.h"
 
@@ -33,6 +34,7 @@ struct SceneDesc {
     std::unique_ptr<ElementSpec> spec;
   };
   std::vector<Entry> elements;
+  std::vector<InputSpec> inputs;  // [[input]]: GPIO sensors, camera (firmware/input)
 };
 
 // Throws ConfigError (file, key, what was expected).

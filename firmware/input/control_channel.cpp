@@ -1,0 +1,233 @@
+#include "input/control_channel.h"
+
+#include <fcntl.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+#include "core/error.h"
+#include "core/log.h"
+
+namespace candela {
+
+const char* const kControlHelp =
+    "commands: gust SIDE [M/S] | blowout [SIDE] [M/S] | wind X Z | calm | state | ping | help "
+    "(SIDE: left right front back)";
+
+namespace {
+
+std::vector<std::string_view> split_words(std::string_view s) {
+  std::vector<std::string_view> words;
+  size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && (s[i] == ' ' || s[i] == '\t' || s[i] == '\r')) ++i;
+    size_t j = i;
+    while (j < s.size() && s[j] != ' ' && s[j] != '\t' && s[j] != '\r') ++j;
+    if (j > i) words.push_back(s.substr(i, j - i));
+    i = j;
+  }
+  return words;
+}
+
+bool parse_number(std::string_view w, double lo, double hi, double& out) {
+  const std::string s(w);
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s.c_str(), &end);
+  if (errno || end != s.c_str() + s.size() || !std::isfinite(v) || v < lo || v > hi) return false;
+  out = v;
+  return true;
+}
+
+// Unit vector of where wind from `side` blows to.
+bool side_direction(std::string_view side, Fixed& x, Fixed& z) {
+  const Fixed one = Fixed::from_int(1);
+  x = z = Fixed{};
+  if (side == "left")
+    x = one;
+  else if (side == "right")
+    x = -one;
+  else if (side == "front")
+    z = -one;
+  else if (side == "back")
+    z = one;
+  else
+    return false;
+  return true;
+}
+
+ControlCommand error(std::string what) {
+  ControlCommand c;
+  c.kind = ControlCommand::Kind::kError;
+  c.error = std::move(what);
+  return c;
+}
+
+}  // namespace
+
+ControlCommand parse_control_command(std::string_view line, const WindSpec& wind) {
+  const auto w = split_words(line);
+  ControlCommand c;
+  if (w.empty()) return error("empty command; " + std::string(kControlHelp));
+  const std::string_view verb = w[0];
+  if (verb == "state" || verb == "ping" || verb == "help") {
+    if (w.size() != 1) return error(std::string(verb) + " takes no arguments");
+    c.kind = verb == "state"  ? ControlCommand::Kind::kState
+             : verb == "ping" ? ControlCommand::Kind::kPing
+                              : ControlCommand::Kind::kHelp;
+    return c;
+  }
+  c.kind = ControlCommand::Kind::kWind;
+  if (verb == "gust" || verb == "blowout") {
+    const bool blow = verb == "blowout";
+    size_t i = 1;
+    Fixed x, z;
+    if (i < w.size() && side_direction(w[i], x, z)) {
+      ++i;
+    } else if (!blow) {
+      return error("gust: expected a side (left, right, front, back), e.g. \"gust left 2.0\"");
+    } else {
+      side_direction("front", x, z);
+    }
+    double strength = (blow ? wind.gust_speed * 4 : wind.gust_speed).to_double();
+    if (i < w.size() && !parse_number(w[i++], 0, 60, strength))
+      return error(std::string(verb) + ": expected a speed in m/s in [0, 60], got \"" +
+                   std::string(w[i - 1]) + "\"");
+    if (i < w.size()) return error(std::string(verb) + ": too many arguments");
+    const Fixed s = Fixed::from_double(strength);
+    c.event = {blow ? WindEvent::Type::kBlowOut : WindEvent::Type::kGust, x * s, z * s};
+    return c;
+  }
+  if (verb == "wind") {
+    double x = 0, z = 0;
+    if (w.size() != 3 || !parse_number(w[1], -30, 30, x) || !parse_number(w[2], -30, 30, z))
+      return error("wind: expected two speeds in m/s in [-30, 30], e.g. \"wind 0.5 0\"");
+    c.event = {WindEvent::Type::kSteady, Fixed::from_double(x), Fixed::from_double(z)};
+    return c;
+  }
+  if (verb == "calm") {
+    if (w.size() != 1) return error("calm takes no arguments");
+    c.event = {WindEvent::Type::kSteady, {}, {}};
+    return c;
+  }
+  return error("unknown command \"" + std::string(verb) + "\"; " + kControlHelp);
+}
+
+ControlServer::ControlServer(std::string path) : path_(std::move(path)) {
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  if (path_.empty() || path_.size() >= sizeof addr.sun_path)
+    throw RuntimeError("control socket " + path_ + ": path empty or longer than " +
+                       std::to_string(sizeof addr.sun_path - 1) + " bytes");
+  struct stat st {};
+  if (lstat(path_.c_str(), &st) == 0) {
+    if (!S_ISSOCK(st.st_mode))
+      throw RuntimeError("control socket " + path_ +
+                         ": exists and is not a socket; not replacing it");
+    unlink(path_.c_str());  // a stale socket from an earlier run
+  }
+  listen_fd_ = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+  if (listen_fd_ < 0) throw RuntimeError(std::string("control socket: ") + std::strerror(errno));
+  // Bind inside a private 0700 folder, tighten to 0600, then rename into
+  // place: nobody else can ever connect in between (no umask games, which
+  // would touch every thread).
+  std::string dir = path_;
+  dir = dir.substr(0, dir.find_last_of('/') == std::string::npos ? 0 : dir.find_last_of('/') + 1);
+  std::string tmpl = (dir.empty() ? std::string("./") : dir) + ".candela-ctl-XXXXXX";
+  const std::string tmp_dir = mkdtemp(tmpl.data()) ? tmpl : std::string();
+  if (tmp_dir.empty()) {
+    const int err = errno;
+    close(listen_fd_);
+    throw RuntimeError("control socket " + path_ +
+                       ": cannot create a folder beside it: " + std::strerror(err));
+  }
+  const std::string tmp_path = tmp_dir + "/s";
+  std::strncpy(addr.sun_path, tmp_path.c_str(), sizeof addr.sun_path - 1);
+  int err = 0;
+  if (tmp_path.size() >= sizeof addr.sun_path)
+    err = ENAMETOOLONG;
+  else if (bind(listen_fd_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 ||
+           chmod(tmp_path.c_str(), 0600) != 0 || listen(listen_fd_, 4) != 0 ||
+           rename(tmp_path.c_str(), path_.c_str()) != 0)
+    err = errno;
+  unlink(tmp_path.c_str());
+  rmdir(tmp_dir.c_str());
+  if (err) {
+    close(listen_fd_);
+    throw RuntimeError("control socket " + path_ + ": " + std::strerror(err));
+  }
+  LOG_INFO("control socket: %s", path_.c_str());
+}
+
+ControlServer::~ControlServer() {
+  for (auto& c : clients_) close(c.fd);
+  if (listen_fd_ >= 0) {
+    close(listen_fd_);
+    unlink(path_.c_str());
+  }
+}
+
+void ControlServer::add_fds(std::vector<pollfd>& fds) const {
+  fds.push_back({listen_fd_, clients_.size() < kMaxClients ? short(POLLIN) : short(0), 0});
+  for (const auto& c : clients_) fds.push_back({c.fd, POLLIN, 0});
+}
+
+void ControlServer::drop(size_t index) {
+  close(clients_[index].fd);
+  clients_.erase(clients_.begin() + static_cast<std::ptrdiff_t>(index));
+}
+
+void ControlServer::serve(const pollfd* fds, size_t n,
+                          const std::function<std::string(std::string_view)>& answer) {
+  if (n == 0) return;
+  // Clients first (fds[1..] match clients_ as add_fds listed them), newest last.
+  std::vector<size_t> gone;
+  for (size_t i = 1; i < n && i - 1 < clients_.size(); ++i) {
+    if (!fds[i].revents) continue;
+    Client& c = clients_[i - 1];
+    char buf[512];
+    const ssize_t got = recv(c.fd, buf, sizeof buf, MSG_DONTWAIT);
+    if (got == 0 || (got < 0 && errno != EAGAIN && errno != EINTR)) {
+      gone.push_back(i - 1);
+      continue;
+    }
+    if (got < 0) continue;
+    c.buffer.append(buf, static_cast<size_t>(got));
+    size_t nl;
+    bool bad = false;
+    while ((nl = c.buffer.find('\n')) != std::string::npos) {
+      std::string reply = answer(std::string_view(c.buffer).substr(0, nl));
+      reply += '\n';
+      c.buffer.erase(0, nl + 1);
+      // Replies are short; a client that does not read them is dropped.
+      if (send(c.fd, reply.data(), reply.size(), MSG_NOSIGNAL | MSG_DONTWAIT) !=
+          static_cast<ssize_t>(reply.size())) {
+        bad = true;
+        break;
+      }
+    }
+    if (!bad && c.buffer.size() > kMaxLine) {
+      const char msg[] = "error: line too long\n";
+      (void)send(c.fd, msg, sizeof msg - 1, MSG_NOSIGNAL | MSG_DONTWAIT);
+      bad = true;
+    }
+    if (bad) gone.push_back(i - 1);
+  }
+  for (size_t k = gone.size(); k-- > 0;) drop(gone[k]);
+  if (fds[0].revents & POLLIN) {
+    while (clients_.size() < kMaxClients) {
+      const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
+      if (fd < 0) break;
+      clients_.push_back({fd, {}});
+    }
+  }
+}
+
+}  // namespace candela

@@ -1,0 +1,64 @@
+// The control channel: a UNIX stream socket (owner-only, 0600) that takes
+// one command per line and answers one line. Used by tests and automation to
+// blow wind and to ask what the display is doing. Commands:
+//   gust SIDE [M/S]     a gust from left|right|front|back (default: [wind] gust_speed)
+//   blowout [SIDE] [M/S] a strong gust that can blow candles out (default: front, 4x gust_speed)
+//   wind X Z            set the steady wind (m/s; x: to the right, z: toward the viewer)
+//   calm                steady wind 0
+//   state               one JSON line: step, frame, wind, events, inputs, ...
+//   ping                answers "pong"
+//   help                lists the commands
+// Wind commands answer "ok"; mistakes answer "error: ..." and change nothing.
+#pragma once
+
+#include <poll.h>
+
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "wind/wind_field.h"
+
+namespace candela {
+
+struct ControlCommand {
+  enum class Kind { kWind, kState, kPing, kHelp, kError } kind = Kind::kError;
+  WindEvent event;
+  std::string error;  // kError: what was wrong
+};
+ControlCommand parse_control_command(std::string_view line, const WindSpec& wind);
+extern const char* const kControlHelp;
+
+class ControlServer {
+ public:
+  // Creates the socket at `path` (replacing a stale socket there, never another
+  // kind of file). Throws RuntimeError saying why it cannot.
+  explicit ControlServer(std::string path);
+  ~ControlServer();
+  ControlServer(const ControlServer&) = delete;
+  ControlServer& operator=(const ControlServer&) = delete;
+
+  const std::string& path() const { return path_; }
+  // Appends the listening socket and the clients to `fds`.
+  void add_fds(std::vector<pollfd>& fds) const;
+  // Serves what poll() reported in fds[0..n) (the entries add_fds appended);
+  // `answer` turns one command line into one reply line (without '\n').
+  void serve(const pollfd* fds, size_t n,
+             const std::function<std::string(std::string_view)>& answer);
+
+  static constexpr size_t kMaxClients = 8;
+  static constexpr size_t kMaxLine = 1024;
+
+ private:
+  struct Client {
+    int fd;
+    std::string buffer;
+  };
+  void drop(size_t index);
+  std::string path_;
+  int listen_fd_ = -1;
+  std::vector<Client> clients_;
+};
+
+}  // namespace candela

@@ -1,0 +1,27 @@
+// What an input thread hands the frame loop: a wind event, and when its
+// cause happened (CLOCK_MONOTONIC ns) so the loop can measure input latency.
+#pragma once
+
+#include <cstdint>
+
+#include "wind/wind_field.h"
+
+namespace candela {
+
+struct InputEvent {
+  WindEvent wind;
+  int64_t cause_ns = 0;
+  uint16_t source = 0;  // index of the InputSpec; kControlSource for the control socket
+};
+inline constexpr uint16_t kControlSource = 0xFFFF;
+
+// Where sensor logic puts its events (the hub's queue, or a test's vector).
+class InputEventSink {
+ public:
+  virtual ~InputEventSink() = default;
+  virtual void emit(const InputEvent& event) = 0;
+};
+
+int64_t monotonic_ns();
+
+}  // namespace candela

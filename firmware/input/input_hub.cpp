@@ -1,0 +1,250 @@
+#include "input/input_hub.h"
+
+#include <poll.h>
+#include <sys/eventfd.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+#include "core/log.h"
+#include "input/camera_source.h"
+#include "input/control_channel.h"
+#include "input/gpio_source.h"
+
+namespace candela {
+
+class InputHub::QueueSink final : public InputEventSink {
+ public:
+  explicit QueueSink(std::function<bool(const InputEvent&)> push) : push_(std::move(push)) {}
+  void emit(const InputEvent& e) override {
+    if (!push_(e) && !warned_) {
+      LOG_WARN("input: event queue full; dropping events (is the frame loop stalled?)");
+      warned_ = true;
+    }
+  }
+
+ private:
+  std::function<bool(const InputEvent&)> push_;
+  bool warned_ = false;
+};
+
+InputHub::InputHub(std::vector<InputSpec> inputs, const WindSpec& wind, std::string control_path)
+    : specs_(std::move(inputs)), wind_spec_(wind), control_path_(std::move(control_path)) {
+  applied_by_source_ = std::make_unique<std::atomic<uint64_t>[]>(specs_.size() + 1);
+  input_sink_ =
+      std::make_unique<QueueSink>([this](const InputEvent& e) { return input_queue_.push(e); });
+  camera_sink_ =
+      std::make_unique<QueueSink>([this](const InputEvent& e) { return camera_queue_.push(e); });
+  gpio_of_spec_.assign(specs_.size(), -1);
+  for (size_t i = 0; i < specs_.size(); ++i) {
+    if (specs_[i].is_gpio()) {
+      gpio_of_spec_[i] = static_cast<int>(gpio_.size());
+      gpio_.push_back(std::make_unique<GpioSource>(specs_[i], static_cast<uint16_t>(i), wind));
+    } else if (!camera_) {
+      camera_ =
+          std::make_unique<CameraSource>(specs_[i], static_cast<uint16_t>(i), wind, *camera_sink_);
+    } else {
+      LOG_WARN("input \"%s\": only one camera input is used; ignoring this one",
+               specs_[i].name.c_str());
+    }
+  }
+}
+
+InputHub::~InputHub() { stop(); }
+
+void InputHub::start() {
+  if (!control_path_.empty()) {
+    try {
+      control_ = std::make_unique<ControlServer>(control_path_);
+    } catch (const std::exception& e) {
+      LOG_ERROR("%s; running without a control channel", e.what());
+    }
+  }
+  if (camera_) camera_->start();
+  if (gpio_.empty() && !control_) return;
+  stop_fd_ = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
+  if (stop_fd_ < 0) {
+    LOG_ERROR("input: eventfd: %s; GPIO inputs and the control channel are off",
+              std::strerror(errno));
+    control_.reset();
+    return;
+  }
+  thread_ = std::thread([this] { input_thread(); });
+}
+
+void InputHub::stop() {
+  if (thread_.joinable()) {
+    const uint64_t one = 1;
+    if (write(stop_fd_, &one, sizeof one) < 0) LOG_ERROR("input: cannot stop the input thread");
+    thread_.join();
+  }
+  if (stop_fd_ >= 0) close(stop_fd_);
+  stop_fd_ = -1;
+  if (camera_) camera_->stop();
+  control_.reset();
+}
+
+void InputHub::drain(WindField& wind) {
+  InputEvent e;
+  int64_t now = 0;
+  auto apply = [&](const InputEvent& ev) {
+    wind.push(ev.wind);
+    if (!now) now = monotonic_ns();
+    const int64_t latency = ev.cause_ns > 0 ? now - ev.cause_ns : -1;
+    if (latency >= 0) {
+      last_latency_ns_.store(latency, std::memory_order_relaxed);
+      if (latency > max_latency_ns_.load(std::memory_order_relaxed))
+        max_latency_ns_.store(latency, std::memory_order_relaxed);
+    }
+    if (ev.source < specs_.size())
+      applied_by_source_[ev.source].fetch_add(1, std::memory_order_relaxed);
+    else
+      applied_control_.fetch_add(1, std::memory_order_relaxed);
+    applied_.fetch_add(1, std::memory_order_release);
+  };
+  while (input_queue_.pop(e)) apply(e);
+  while (camera_queue_.pop(e)) apply(e);
+}
+
+void InputHub::publish(uint64_t step, uint64_t frame, WindSample wind) {
+  wind_x_.store(wind.x.raw, std::memory_order_relaxed);
+  wind_z_.store(wind.z.raw, std::memory_order_relaxed);
+  step_.store(step, std::memory_order_relaxed);
+  frame_.store(frame, std::memory_order_release);
+}
+
+namespace {
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+std::string ms(int64_t ns) {
+  if (ns < 0) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3f", static_cast<double>(ns) / 1e6);
+  return buf;
+}
+}  // namespace
+
+std::string InputHub::state_json() const {
+  char head[512];
+  const uint64_t frame = frame_.load(std::memory_order_acquire);
+  std::snprintf(head, sizeof head,
+                "{\"frame\":%llu,\"step\":%llu,\"wind\":{\"x\":%.4f,\"z\":%.4f},\"events\":%llu,"
+                "\"control_events\":%llu,\"dropped\":%llu,\"latency_ms\":{\"last\":%s,\"max\":%s},"
+                "\"candles_lit\":null,\"inputs\":[",
+                static_cast<unsigned long long>(frame),
+                static_cast<unsigned long long>(step_.load(std::memory_order_relaxed)),
+                Fixed::from_raw(wind_x_.load(std::memory_order_relaxed)).to_double(),
+                Fixed::from_raw(wind_z_.load(std::memory_order_relaxed)).to_double(),
+                static_cast<unsigned long long>(applied_.load(std::memory_order_acquire)),
+                static_cast<unsigned long long>(applied_control_.load(std::memory_order_relaxed)),
+                static_cast<unsigned long long>(input_queue_.dropped() + camera_queue_.dropped()),
+                ms(last_latency_ns_.load(std::memory_order_relaxed)).c_str(),
+                ms(max_latency_ns_.load(std::memory_order_relaxed)).c_str());
+  std::string out = head;
+  bool first = true;
+  for (size_t i = 0; i < specs_.size(); ++i) {
+    const InputSpec& s = specs_[i];
+    std::string status, line, extra;
+    if (gpio_of_spec_[i] >= 0) {
+      const GpioSource& g = *gpio_[static_cast<size_t>(gpio_of_spec_[i])];
+      status = g.status();
+      line = g.line_description();
+      char buf[96];
+      std::snprintf(buf, sizeof buf, ",\"activations\":%llu,\"speed\":%.4f",
+                    static_cast<unsigned long long>(g.logic().activations()), g.logic().speed());
+      extra = buf;
+    } else if (camera_ && camera_->source() == i) {
+      status = camera_->status();
+      line = camera_->device();
+      extra = camera_->stats_json();
+    } else {
+      status = "ignored";
+    }
+    char buf[64];
+    std::snprintf(
+        buf, sizeof buf, ",\"events\":%llu",
+        static_cast<unsigned long long>(applied_by_source_[i].load(std::memory_order_relaxed)));
+    out += std::string(first ? "" : ",") + "{\"name\":\"" + json_escape(s.name) + "\",\"kind\":\"" +
+           input_kind_name(s.kind) + "\",\"status\":\"" + json_escape(status) + "\",\"device\":\"" +
+           json_escape(line) + "\"" + buf + extra + "}";
+    first = false;
+  }
+  out += "]}";
+  return out;
+}
+
+std::string InputHub::answer(std::string_view line) {
+  const ControlCommand c = parse_control_command(line, wind_spec_);
+  switch (c.kind) {
+    case ControlCommand::Kind::kWind: {
+      InputEvent e;
+      e.wind = c.event;
+      e.cause_ns = monotonic_ns();
+      e.source = kControlSource;
+      return input_queue_.push(e) ? "ok" : "error: event queue full";
+    }
+    case ControlCommand::Kind::kState:
+      return state_json();
+    case ControlCommand::Kind::kPing:
+      return "pong";
+    case ControlCommand::Kind::kHelp:
+      return kControlHelp;
+    case ControlCommand::Kind::kError:
+      break;
+  }
+  return "error: " + c.error;
+}
+
+void InputHub::input_thread() {
+  std::vector<pollfd> fds;
+  std::vector<GpioSource*> fd_owner;
+  const auto answer_fn = [this](std::string_view line) { return answer(line); };
+  for (;;) {
+    const int64_t now = monotonic_ns();
+    int64_t deadline = now + GpioSource::kRetryNs;
+    for (auto& g : gpio_) deadline = std::min(deadline, g->service(now, *input_sink_));
+    fds.clear();
+    fd_owner.clear();
+    fds.push_back({stop_fd_, POLLIN, 0});
+    const size_t control_at = fds.size();
+    if (control_) control_->add_fds(fds);
+    const size_t gpio_at = fds.size();
+    for (auto& g : gpio_)
+      if (g->fd() >= 0) {
+        fds.push_back({g->fd(), POLLIN, 0});
+        fd_owner.push_back(g.get());
+      }
+    const int64_t wait_ns = std::max<int64_t>(0, deadline - monotonic_ns());
+    const int timeout_ms = static_cast<int>((wait_ns + 999'999) / 1'000'000);
+    const int n = poll(fds.data(), fds.size(), timeout_ms);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      LOG_ERROR("input: poll: %s; the input thread stops", std::strerror(errno));
+      return;
+    }
+    if (fds[0].revents) return;
+    if (n == 0) continue;
+    for (size_t i = gpio_at; i < fds.size(); ++i)
+      if (fds[i].revents) fd_owner[i - gpio_at]->on_poll(fds[i].revents, *input_sink_);
+    if (control_) control_->serve(fds.data() + control_at, gpio_at - control_at, answer_fn);
+  }
+}
+
+}  // namespace candela

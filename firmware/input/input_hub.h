@@ -1,0 +1,78 @@
+// The runtime's inputs: GPIO sensors and the control socket on one input
+// thread (asleep in poll()), the camera on its own thread, each handing wind
+// events to the frame loop through a lock-free SPSC queue. The frame loop
+// calls drain() once per frame (applies the events to the wind field) and
+// publish() once per frame (what `state` reports). Nothing here ever blocks
+// or allocates on the frame loop's side.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "input/input_event.h"
+#include "input/input_spec.h"
+#include "input/spsc_queue.h"
+#include "wind/wind_field.h"
+
+namespace candela {
+
+class GpioSource;
+class ControlServer;
+class CameraSource;
+
+class InputHub {
+ public:
+  // `control_path` empty: no control socket.
+  InputHub(std::vector<InputSpec> inputs, const WindSpec& wind, std::string control_path = {});
+  ~InputHub();
+  InputHub(const InputHub&) = delete;
+  InputHub& operator=(const InputHub&) = delete;
+
+  // Starts the threads. Missing hardware is logged and retried, never thrown;
+  // a control socket that cannot be made is logged and left out.
+  void start();
+  void stop();
+  bool control_ready() const { return control_ != nullptr; }
+
+  // Frame loop, once per frame before the steps: applies queued events.
+  void drain(WindField& wind);
+  // Frame loop, once per frame after the steps: what `state` reports.
+  void publish(uint64_t step, uint64_t frame, WindSample wind);
+
+  // The `state` reply (one JSON line). Input thread.
+  std::string state_json() const;
+  // One control command line -> one reply line. Input thread.
+  std::string answer(std::string_view line);
+
+  uint64_t events_applied() const { return applied_.load(std::memory_order_relaxed); }
+
+ private:
+  class QueueSink;
+  void input_thread();
+
+  std::vector<InputSpec> specs_;
+  WindSpec wind_spec_;
+  std::string control_path_;
+  std::vector<std::unique_ptr<GpioSource>> gpio_;
+  std::vector<int> gpio_of_spec_;  // index into gpio_, -1 for the camera
+  std::unique_ptr<ControlServer> control_;
+  std::unique_ptr<CameraSource> camera_;
+  SpscQueue<InputEvent, 256> input_queue_;  // producer: the input thread
+  SpscQueue<InputEvent, 64> camera_queue_;  // producer: the camera thread
+  std::unique_ptr<QueueSink> input_sink_;
+  std::unique_ptr<QueueSink> camera_sink_;
+  int stop_fd_ = -1;
+  std::thread thread_;
+
+  // Written by the frame loop, read by the input thread.
+  std::atomic<uint64_t> step_{0}, frame_{0}, applied_{0};
+  std::atomic<int32_t> wind_x_{0}, wind_z_{0};
+  std::atomic<int64_t> last_latency_ns_{-1}, max_latency_ns_{-1};
+  std::unique_ptr<std::atomic<uint64_t>[]> applied_by_source_;
+  std::atomic<uint64_t> applied_control_{0};
+};
+
+}  // namespace candela

@@ -1,0 +1,211 @@
+// The control channel through a real UNIX socket: permissions, commands that
+// reach the wind field, state replies, mistakes answered without effect; and
+// the whole `candela` program driven through --control.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include "input/control_channel.h"
+#include "input/input_hub.h"
+#include "scene/element.h"
+
+extern char** environ;
+
+namespace candela {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+std::string temp_dir() {
+  std::string t = (fs::temp_directory_path() / "candela-ctl-test-XXXXXX").string();
+  EXPECT_NE(mkdtemp(t.data()), nullptr);
+  return t;
+}
+
+// A client that sends a line and waits (with a deadline) for one reply line.
+class Client {
+ public:
+  explicit Client(const std::string& path) {
+    fd_ = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_un a{};
+    a.sun_family = AF_UNIX;
+    std::strncpy(a.sun_path, path.c_str(), sizeof a.sun_path - 1);
+    connected_ = connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0;
+    timeval tv{5, 0};
+    setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  }
+  ~Client() { close(fd_); }
+  bool connected() const { return connected_; }
+  std::string ask(const std::string& line) {
+    const std::string msg = line + "\n";
+    if (send(fd_, msg.data(), msg.size(), MSG_NOSIGNAL) != static_cast<ssize_t>(msg.size()))
+      return "<send failed>";
+    std::string reply;
+    char c;
+    while (recv(fd_, &c, 1, 0) == 1) {
+      if (c == '\n') return reply;
+      reply += c;
+    }
+    return "<no reply>";
+  }
+
+ private:
+  int fd_ = -1;
+  bool connected_ = false;
+};
+
+double json_number(const std::string& json, const std::string& key) {
+  std::smatch m;
+  if (!std::regex_search(json, m, std::regex("\"" + key + "\":(-?[0-9.]+)"))) return NAN;
+  return std::stod(m[1]);
+}
+
+TEST(ControlCommands, Parse) {
+  WindSpec w;  // gust_speed 2
+  auto c = parse_control_command("gust left 2.5", w);
+  ASSERT_EQ(c.kind, ControlCommand::Kind::kWind);
+  EXPECT_EQ(c.event.type, WindEvent::Type::kGust);
+  EXPECT_EQ(c.event.x, Fixed::from_ratio(5, 2));
+  c = parse_control_command("gust front", w);
+  EXPECT_EQ(c.event.z, Fixed::from_int(-2));
+  c = parse_control_command("  wind -0.5   0.25 ", w);
+  ASSERT_EQ(c.kind, ControlCommand::Kind::kWind);
+  EXPECT_EQ(c.event.type, WindEvent::Type::kSteady);
+  EXPECT_EQ(c.event.x, -Fixed::from_ratio(1, 2));
+  EXPECT_EQ(c.event.z, Fixed::from_ratio(1, 4));
+  c = parse_control_command("blowout", w);
+  EXPECT_EQ(c.event.type, WindEvent::Type::kBlowOut);
+  EXPECT_EQ(c.event.z, Fixed::from_int(-8));
+  c = parse_control_command("blowout left 10", w);
+  EXPECT_EQ(c.event.x, Fixed::from_int(10));
+  EXPECT_EQ(parse_control_command("state", w).kind, ControlCommand::Kind::kState);
+  for (const char* bad : {"", "gust", "gust up", "gust left fast", "gust left 99", "wind 1",
+                          "wind nan 0", "state now", "dance", "gust left 1 2"}) {
+    c = parse_control_command(bad, w);
+    EXPECT_EQ(c.kind, ControlCommand::Kind::kError) << bad;
+    EXPECT_FALSE(c.error.empty()) << bad;
+  }
+}
+
+TEST(ControlSocket, RoundTripReachesTheWindField) {
+  const std::string dir = temp_dir();
+  const std::string path = dir + "/ctl";
+  WindSpec spec;
+  InputHub hub({}, spec, path);
+  hub.start();
+  ASSERT_TRUE(hub.control_ready());
+  struct stat st {};
+  ASSERT_EQ(stat(path.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISSOCK(st.st_mode));
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  // No leftovers of the private bind folder beside it.
+  size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(dir)) entries += e.path().filename() != "ctl";
+  EXPECT_EQ(entries, 0u);
+
+  Client client(path);
+  ASSERT_TRUE(client.connected());
+  EXPECT_EQ(client.ask("ping"), "pong");
+  EXPECT_EQ(client.ask("gust left 2.0"), "ok");
+  EXPECT_EQ(client.ask("wind 0.5 -0.25"), "ok");
+  EXPECT_EQ(client.ask("wind 0.5").rfind("error: ", 0), 0u);
+
+  WindField wind(spec);
+  hub.drain(wind);  // both events were queued before the replies came back
+  EXPECT_EQ(hub.events_applied(), 2u);
+  StepContext step;
+  step.dt = Fixed::from_ratio(1, 60);
+  for (int i = 0; i < 10; ++i) wind.update(step);
+  const WindSample s = wind.sample({});
+  EXPECT_GT(s.x, Fixed::from_ratio(1, 2));  // steady 0.5 plus the rising gust
+  EXPECT_EQ(s.z, -Fixed::from_ratio(1, 4));
+  hub.publish(10, 5, s);
+
+  const std::string state = client.ask("state");
+  EXPECT_EQ(state.front(), '{');
+  EXPECT_EQ(state.back(), '}');
+  EXPECT_EQ(json_number(state, "events"), 2);
+  EXPECT_EQ(json_number(state, "step"), 10);
+  EXPECT_NEAR(json_number(state, "x"), s.x.to_double(), 1e-3);
+  EXPECT_GE(json_number(state, "last"), 0);  // command -> wind field latency, ms
+
+  // A second client at the same time is served too.
+  Client other(path);
+  ASSERT_TRUE(other.connected());
+  EXPECT_EQ(other.ask("ping"), "pong");
+  hub.stop();
+  EXPECT_FALSE(fs::exists(path));  // removed on exit
+  fs::remove_all(dir);
+}
+
+TEST(ControlSocket, RefusesToReplaceAFileThatIsNotASocket) {
+  const std::string dir = temp_dir();
+  const std::string path = dir + "/precious.txt";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    std::fputs("keep me", f);
+    std::fclose(f);
+  }
+  InputHub hub({}, WindSpec{}, path);
+  hub.start();  // logs, runs without a control channel
+  EXPECT_FALSE(hub.control_ready());
+  EXPECT_EQ(fs::file_size(path), 7u);
+  fs::remove_all(dir);
+}
+
+// The real program: headless candela with --control answers `state`, and a
+// gust sent through the socket shows in the wind it reports.
+TEST(ControlSocket, CandelaProgramRegistersAGust) {
+  const std::string dir = temp_dir();
+  const std::string path = dir + "/ctl";
+  const std::string bin = std::string(CANDELA_BINARY_DIR) + "/firmware/candela";
+  std::vector<std::string> args = {bin,     "--display", "headless", "--test-pattern", "--size",
+                                   "64x48", "--control", path,       "--log-level",    "warn"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, bin.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  const auto deadline = Clock::now() + std::chrono::seconds(20);
+  std::unique_ptr<Client> client;
+  while (Clock::now() < deadline) {
+    if (fs::exists(path)) {
+      client = std::make_unique<Client>(path);
+      if (client->connected()) break;
+    }
+    usleep(10000);  // polling for the socket to appear, bounded by the deadline
+  }
+  ASSERT_TRUE(client && client->connected()) << "no control socket within 20 s";
+  std::string state = client->ask("state");
+  EXPECT_EQ(json_number(state, "x"), 0) << state;
+  EXPECT_EQ(client->ask("gust right 3"), "ok");
+  double x = 0;
+  while (Clock::now() < deadline && !(x < -0.5)) {
+    state = client->ask("state");
+    x = json_number(state, "x");
+  }
+  EXPECT_LT(x, -0.5) << "the gust from the right never showed: " << state;
+  EXPECT_EQ(json_number(state, "control_events"), 1) << state;
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_FALSE(fs::exists(path));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace candela

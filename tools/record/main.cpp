@@ -1,0 +1,69 @@
+// candela-record: records a flame dataset from a V4L2 camera. See README.md.
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <cstdio>
+
+#include "recorder.h"
+
+namespace {
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop = true; }
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace candela::record;
+  RecordOptions o;
+  CLI::App app{
+      "candela-record: record a flame clip from a V4L2 camera into a folder that\n"
+      "`candela-tool ingest` reads (frames/*.png, info.txt, manifest.json).\n"
+      "Exposure, gain and white balance are locked where the camera has them.\n"
+      "Exit status: 0 done, 2 usage, 3 output folder not writable or full,\n"
+      "4 no usable camera, 5 the camera went away (frames so far are kept).",
+      "candela-record"};
+  std::string size;
+  app.add_option("--device,-d", o.device, "V4L2 capture device")->capture_default_str();
+  app.add_option("--out,-o", o.out, "Output folder (created; must not hold a recording)")->required();
+  app.add_option("--clip", o.clip, "Clip name in the manifest (default: the folder's name)");
+  app.add_option("--size", size, "Frame size WxH (the camera's nearest is used)")->default_str("640x480");
+  app.add_option("--format", o.pixel_format, "Pixel format: GREY, YUYV, UYVY, RGB3, BGR3 (default: camera's first usable)");
+  app.add_option("--fps", o.fps, "Frame rate to ask for")->check(CLI::Range(1, 240))->capture_default_str();
+  app.add_option("--frames,-n", o.frames, "Stop after N frames");
+  app.add_option("--seconds", o.seconds, "Stop after S seconds")->check(CLI::NonNegativeNumber);
+  app.add_flag("--color", o.color, "Write RGB PNGs (default: gray luma, like the flame footage)");
+  app.add_flag("--keep-auto", o.keep_auto, "Leave auto exposure/gain/white balance alone");
+  app.add_option("--exposure", o.exposure, "Manual exposure (the camera's units; default: current)");
+  app.add_option("--gain", o.gain, "Manual gain (default: current)");
+  app.add_option("--white-balance", o.white_balance, "White balance temperature in K (default: current)");
+  app.add_option("--queue", o.queue, "Frames buffered for the PNG writers")->check(CLI::Range(2, 1024))->capture_default_str();
+  app.add_option("--writers", o.writers, "PNG writer threads")->check(CLI::Range(1, 16))->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (!size.empty()) {
+    char extra = 0;
+    if (std::sscanf(size.c_str(), "%dx%d%c", &o.width, &o.height, &extra) != 2 || o.width < 16 ||
+        o.height < 16 || o.width > 8192 || o.height > 8192) {
+      std::fprintf(stderr, "candela-record: --size: expected WxH, e.g. 640x480, got '%s'\n", size.c_str());
+      return kExitUsage;
+    }
+  }
+  if (o.frames == 0 && o.seconds <= 0)
+    std::fprintf(stderr, "candela-record: recording until Ctrl-C (no --frames or --seconds)\n");
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  const RecordResult r = record(o, g_stop);
+  if (r.exit_code == kExitOk)
+    std::fprintf(stderr, "candela-record: %s: %llu frames in %.2f s (%.2f fps), %llu dropped -> %s\n",
+                 r.message.c_str(), static_cast<unsigned long long>(r.written), r.seconds, r.fps,
+                 static_cast<unsigned long long>(r.dropped), o.out.c_str());
+  else if (r.written || r.seconds > 0)
+    std::fprintf(stderr,
+                 "candela-record: error: %s; %llu frames written so far are kept in %s "
+                 "(manifest.json lists them)\n",
+                 r.message.c_str(), static_cast<unsigned long long>(r.written), o.out.c_str());
+  else
+    std::fprintf(stderr, "candela-record: error: %s\n", r.message.c_str());
+  return r.exit_code;
+}

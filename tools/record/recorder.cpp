@@ -1,0 +1,422 @@
+#include "recorder.h"
+
+#include <fcntl.h>
+#include <linux/videodev2.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <deque>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "input/v4l2_capture.h"
+
+namespace candela::record {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\u%04x", c);
+      out += b;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+// Writes `text` to path atomically; throws RuntimeError naming the file and errno.
+void write_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw RuntimeError(path + ": cannot write: " + std::strerror(errno));
+  size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : ENOSPC;
+      close(fd);
+      unlink(tmp.c_str());
+      throw RuntimeError(path + ": write failed: " + std::strerror(err));
+    }
+    done += static_cast<size_t>(n);
+  }
+  if (close(fd) != 0) {
+    const int err = errno;
+    unlink(tmp.c_str());
+    throw RuntimeError(path + ": write failed: " + std::strerror(err));
+  }
+  if (rename(tmp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    unlink(tmp.c_str());
+    throw RuntimeError(path + ": cannot rename into place: " + std::strerror(err));
+  }
+}
+
+std::string utc_now() {
+  char buf[32];
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+struct Slot {
+  std::vector<uint8_t> pixels;
+  uint32_t sequence = 0;
+  int64_t timestamp_ns = 0;
+};
+
+struct WrittenFrame {
+  uint32_t sequence;
+  int64_t timestamp_ns;
+};
+
+// Shared between the capture loop and the PNG writers.
+struct Pipeline {
+  std::mutex mutex;
+  std::condition_variable work, space;
+  std::deque<Slot*> pending;
+  std::vector<Slot*> free_slots;
+  std::map<uint32_t, WrittenFrame> written;  // by sequence
+  std::string write_error;
+  bool closing = false;
+};
+
+// What lock_controls() did, for the manifest.
+struct Locked {
+  std::string name, outcome;
+};
+
+std::vector<Locked> lock_controls(V4l2Capture& cap, const RecordOptions& o) {
+  std::vector<Locked> out;
+  auto set = [&](uint32_t id, int64_t v, const char* name, const std::string& what) {
+    std::string why;
+    out.push_back({name, cap.set_control(id, v, why) ? what : "not set: " + why});
+  };
+  auto keep = [&](uint32_t id, int64_t v, const char* name) {
+    if (v >= 0) {
+      set(id, v, name, "set to " + std::to_string(v));
+    } else if (auto cur = cap.get_control(id)) {
+      out.push_back({name, "kept at " + std::to_string(*cur)});
+    } else {
+      out.push_back({name, "not offered"});
+    }
+  };
+  if (o.keep_auto) {
+    out.push_back({"auto controls", "left as they were (--keep-auto)"});
+    return out;
+  }
+  // Auto exposure jumps ruin a dataset: everything manual, at the values now in use.
+  set(V4L2_CID_EXPOSURE_AUTO, V4L2_EXPOSURE_MANUAL, "exposure_auto", "manual");
+  set(V4L2_CID_EXPOSURE_AUTO_PRIORITY, 0, "exposure_auto_priority", "off (constant frame rate)");
+  keep(V4L2_CID_EXPOSURE_ABSOLUTE, o.exposure, "exposure_time_absolute");
+  set(V4L2_CID_AUTOGAIN, 0, "gain_automatic", "off");
+  keep(V4L2_CID_GAIN, o.gain, "gain");
+  set(V4L2_CID_AUTO_WHITE_BALANCE, 0, "white_balance_automatic", "off");
+  keep(V4L2_CID_WHITE_BALANCE_TEMPERATURE, o.white_balance, "white_balance_temperature");
+  return out;
+}
+
+}  // namespace
+
+RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
+  RecordResult res;
+  using Clock = std::chrono::steady_clock;
+  // --- the output folder --------------------------------------------------------
+  const fs::path out(o.out);
+  const std::string frames_dir = (out / "frames").string();
+  const std::string manifest_path = (out / "manifest.json").string();
+  if (fs::exists(manifest_path)) {
+    res.exit_code = kExitOutput;
+    res.message = o.out + " already holds a recording (manifest.json); choose another folder";
+    return res;
+  }
+  const std::string clip =
+      !o.clip.empty() ? o.clip : fs::absolute(out).lexically_normal().filename().string();
+
+  // --- the camera -----------------------------------------------------------------
+  std::unique_ptr<V4l2Capture> cap;
+  try {
+    V4l2Capture::Settings s;
+    s.device = o.device;
+    s.width = o.width;
+    s.height = o.height;
+    s.fps = o.fps;
+    s.buffers = 8;
+    if (!o.pixel_format.empty()) {
+      s.fourcc = fourcc_from_name(o.pixel_format);
+      if (!s.fourcc || !is_supported_format(s.fourcc)) {
+        res.exit_code = kExitUsage;
+        res.message = "--format " + o.pixel_format + ": expected GREY, YUYV, UYVY, RGB3 or BGR3";
+        return res;
+      }
+    }
+    cap = std::make_unique<V4l2Capture>(s);
+  } catch (const std::exception& e) {
+    res.exit_code = kExitCamera;
+    res.message = e.what();
+    return res;
+  }
+  // Only now, so a missing camera leaves no empty folder behind.
+  std::error_code ec;
+  fs::create_directories(frames_dir, ec);
+  if (ec) {
+    res.exit_code = kExitOutput;
+    res.message = "cannot create " + frames_dir + ": " + ec.message();
+    return res;
+  }
+  const V4l2Format f = cap->format();
+  if (o.color && (f.fourcc == V4L2_PIX_FMT_NV12 || f.fourcc == V4L2_PIX_FMT_YUV420)) {
+    res.exit_code = kExitCamera;
+    res.message = "--color: " + fourcc_name(f.fourcc) + " frames are recorded gray only";
+    return res;
+  }
+  const std::vector<Locked> locked = lock_controls(*cap, o);
+  const std::vector<V4l2Control> controls = cap->controls();
+  const std::string card = cap->card(), driver = cap->driver();
+  const int channels = o.color ? 3 : 1;
+  const double fps = f.fps > 0 ? f.fps : o.fps;
+
+  // info.txt: what ingest reads the frame rate from ("NN fps").
+  char info[512];
+  std::snprintf(info, sizeof info,
+                "%s: recorded by candela-record from %s (%s), %dx%d %s at %g fps; %s PNG frames "
+                "in frames/; details in manifest.json\n",
+                clip.c_str(), o.device.c_str(), card.c_str(), f.width, f.height,
+                fourcc_name(f.fourcc).c_str(), fps, o.color ? "RGB" : "gray");
+  try {
+    write_atomic((out / "info.txt").string(), info);
+  } catch (const std::exception& e) {
+    res.exit_code = kExitOutput;
+    res.message = std::string("output folder not writable: ") + e.what();
+    return res;
+  }
+
+  // --- writers ----------------------------------------------------------------------
+  Pipeline p;
+  std::vector<Slot> slots(static_cast<size_t>(std::max(2, o.queue)));
+  for (auto& s : slots) {
+    s.pixels.resize(static_cast<size_t>(f.width) * f.height * channels);
+    p.free_slots.push_back(&s);
+  }
+  std::vector<std::thread> writers;
+  for (int i = 0; i < std::max(1, o.writers); ++i)
+    writers.emplace_back([&] {
+      std::unique_lock<std::mutex> lock(p.mutex);
+      for (;;) {
+        p.work.wait(lock, [&] { return p.closing || !p.pending.empty(); });
+        if (p.pending.empty()) return;
+        Slot* s = p.pending.front();
+        p.pending.pop_front();
+        const bool skip = !p.write_error.empty();  // after a failure, write nothing more
+        lock.unlock();
+        char name[32];
+        std::snprintf(name, sizeof name, "%08u.png", s->sequence);
+        std::string error;
+        if (!skip) {
+          try {
+            write_png(frames_dir + "/" + name, f.width, f.height, channels, s->pixels.data());
+          } catch (const std::exception& e) {
+            error = e.what();
+          }
+        }
+        lock.lock();
+        if (!skip && error.empty()) p.written[s->sequence] = {s->sequence, s->timestamp_ns};
+        if (!error.empty() && p.write_error.empty()) p.write_error = error;
+        p.free_slots.push_back(s);
+        p.space.notify_all();
+      }
+    });
+
+  std::vector<uint32_t> dropped;  // capture thread only
+  std::string end_reason;
+  bool complete = false;
+  const std::string started = utc_now();
+  auto manifest = [&](bool final_write) {
+    std::string frames_json, controls_json, locked_json, dropped_json;
+    uint64_t n = 0;
+    {
+      std::lock_guard<std::mutex> lock(p.mutex);
+      for (const auto& [seq, w] : p.written) {
+        char b[128];
+        std::snprintf(b, sizeof b, "%s\n    {\"file\":\"frames/%08u.png\",\"sequence\":%u,\"timestamp_ns\":%lld}",
+                      n ? "," : "", seq, seq, static_cast<long long>(w.timestamp_ns));
+        frames_json += b;
+        ++n;
+      }
+    }
+    for (const auto& c : controls)
+      controls_json += (controls_json.empty() ? "\n    " : ",\n    ") + json_string(c.name) +
+                       ":{\"id\":" + std::to_string(c.id) + ",\"value\":" + std::to_string(c.value) +
+                       ",\"default\":" + std::to_string(c.default_value) + "}";
+    for (const auto& l : locked)
+      locked_json += (locked_json.empty() ? "" : ",") + json_string(l.name) + ":" + json_string(l.outcome);
+    for (uint32_t d : dropped) dropped_json += (dropped_json.empty() ? "" : ",") + std::to_string(d);
+    char head[1024];
+    std::snprintf(head, sizeof head,
+                  "{\n  \"format\": \"candela-recording\",\n  \"version\": 1,\n  \"clip\": %s,\n"
+                  "  \"device\": %s,\n  \"card\": %s,\n  \"driver\": %s,\n  \"started\": \"%s\",\n"
+                  "  \"width\": %d,\n  \"height\": %d,\n  \"pixel_format\": \"%s\",\n"
+                  "  \"png\": \"%s\",\n  \"fps\": %g,\n  \"requested_fps\": %d,\n",
+                  json_string(clip).c_str(), json_string(o.device).c_str(),
+                  json_string(card).c_str(), json_string(driver).c_str(),
+                  started.c_str(), f.width, f.height, fourcc_name(f.fourcc).c_str(),
+                  o.color ? "rgb8" : "gray8", fps, o.fps);
+    const std::string text =
+        std::string(head) + "  \"locked\": {" + locked_json + "},\n  \"controls\": {" + controls_json +
+        "\n  },\n  \"frame_count\": " + std::to_string(n) + ",\n  \"frames\": [" + frames_json +
+        "\n  ],\n  \"dropped\": {\"count\": " + std::to_string(dropped.size()) + ", \"sequences\": [" +
+        dropped_json + "]},\n  \"complete\": " + (final_write && complete ? "true" : "false") +
+        ",\n  \"end_reason\": " + json_string(final_write ? end_reason : "recording") + "\n}\n";
+    write_atomic(manifest_path, text);
+    return n;
+  };
+
+  // --- capture loop -----------------------------------------------------------------
+  const auto t0 = Clock::now();
+  auto last_manifest = t0;
+  bool have_seq = false;
+  uint32_t next_seq = 0;
+  uint64_t queued = 0;
+  int silent = 0;
+  for (;;) {
+    if (stop.load()) {
+      end_reason = "stopped by a signal";
+      complete = true;
+      break;
+    }
+    {
+      std::lock_guard<std::mutex> lock(p.mutex);
+      if (!p.write_error.empty()) {
+        end_reason = "writing frames failed: " + p.write_error;
+        res.exit_code = kExitOutput;
+        break;
+      }
+    }
+    if (o.frames && queued >= o.frames) {
+      end_reason = "frame count reached";
+      complete = true;
+      break;
+    }
+    if (o.seconds > 0 && std::chrono::duration<double>(Clock::now() - t0).count() >= o.seconds) {
+      end_reason = "duration reached";
+      complete = true;
+      break;
+    }
+    V4l2Frame frame;
+    const auto r = cap->next(frame, 2000);
+    if (r == V4l2Capture::Result::kGone) {
+      end_reason = "the camera went away: " + cap->error();
+      res.exit_code = kExitCameraLost;
+      break;
+    }
+    if (r == V4l2Capture::Result::kTimeout) {
+      if (++silent >= 3) {  // 6 s without a frame: the camera is as good as gone
+        end_reason = "the camera delivered no frame for 6 s";
+        res.exit_code = kExitCameraLost;
+        break;
+      }
+      continue;
+    }
+    silent = 0;
+    // Sequence gaps: the driver dropped frames before we saw them.
+    if (have_seq && frame.sequence > next_seq)
+      for (uint32_t s = next_seq; s < frame.sequence && dropped.size() < 100000; ++s) dropped.push_back(s);
+    have_seq = true;
+    next_seq = frame.sequence + 1;
+    Slot* slot = nullptr;
+    {
+      std::lock_guard<std::mutex> lock(p.mutex);
+      if (!p.free_slots.empty()) {
+        slot = p.free_slots.back();
+        p.free_slots.pop_back();
+      }
+    }
+    const bool ok = slot && frame.bytes &&
+                    (o.color ? frame_to_rgb(f, frame.data, frame.bytes, slot->pixels.data())
+                             : frame_to_gray(f, frame.data, frame.bytes, slot->pixels.data()));
+    cap->release(frame);
+    if (!ok) {
+      dropped.push_back(frame.sequence);  // writers behind, or a damaged frame
+      if (slot) {
+        std::lock_guard<std::mutex> lock(p.mutex);
+        p.free_slots.push_back(slot);
+      }
+    } else {
+      slot->sequence = frame.sequence;
+      slot->timestamp_ns = frame.timestamp_ns;
+      std::lock_guard<std::mutex> lock(p.mutex);
+      p.pending.push_back(slot);
+      p.work.notify_one();
+      ++queued;
+    }
+    if (Clock::now() - last_manifest > std::chrono::seconds(1)) {
+      last_manifest = Clock::now();
+      try {
+        manifest(false);
+      } catch (const std::exception& e) {
+        end_reason = std::string("writing the manifest failed: ") + e.what();
+        res.exit_code = kExitOutput;
+        break;
+      }
+    }
+  }
+  cap.reset();  // stop streaming before the (possibly long) writer drain
+  {
+    std::lock_guard<std::mutex> lock(p.mutex);
+    p.closing = true;
+    p.work.notify_all();
+  }
+  for (auto& t : writers) t.join();
+  if (!p.write_error.empty() && res.exit_code == 0) {
+    end_reason = "writing frames failed: " + p.write_error;
+    res.exit_code = kExitOutput;
+    complete = false;
+  }
+  if (res.exit_code != 0) complete = false;
+  // The failed frame's temporary file is gone (write_png removes it), which
+  // frees room for the final manifest even on a full disk.
+  try {
+    res.written = manifest(true);
+  } catch (const std::exception& e) {
+    std::lock_guard<std::mutex> lock(p.mutex);
+    res.written = p.written.size();
+    end_reason += std::string("; the final manifest could not be written (") + e.what() +
+                  "), the one from the last second stands";
+    if (res.exit_code == 0) res.exit_code = kExitOutput;
+  }
+  res.dropped = dropped.size();
+  res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  res.fps = res.seconds > 0 ? static_cast<double>(res.written) / res.seconds : 0;
+  if (end_reason.find("failed") != std::string::npos &&
+      (end_reason.find("No space") != std::string::npos || end_reason.find("Read-only") != std::string::npos))
+    end_reason = (end_reason.find("No space") != std::string::npos ? "output disk full; "
+                                                                   : "output folder read-only; ") +
+                 end_reason;
+  res.message = end_reason;
+  return res;
+}
+
+}  // namespace candela::record
