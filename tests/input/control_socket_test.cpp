@@ -129,7 +129,7 @@ TEST(ControlSocket, RoundTripReachesTheWindField) {
   StepContext step;
   step.dt = Fixed::from_ratio(1, 60);
   for (int i = 0; i < 10; ++i) wind.update(step);
-  const WindSample s = wind.sample({});
+  const WindSample s = wind.sample(Vec3{});
   EXPECT_GT(s.x, Fixed::from_ratio(1, 2));  // steady 0.5 plus the rising gust
   EXPECT_EQ(s.z, -Fixed::from_ratio(1, 4));
   hub.publish(10, 5, s);
