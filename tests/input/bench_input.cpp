@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 #include <linux/videodev2.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "input/motion_wind.h"
@@ -59,6 +60,44 @@ BENCHMARK(camera_frame)
     ->Args({320, 240})
     ->Args({640, 480})
     ->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace candela
+
+// candela-record's per-frame write cost: a 640x480 gray frame to an atomic PNG
+// (encode + write + rename) into $TMPDIR. Its rate per writer thread bounds
+// the recorder's sustained frame rate without drops.
+#include <unistd.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "core/image.h"
+
+namespace candela {
+namespace {
+
+void record_png_write(benchmark::State& state) {
+  const int w = static_cast<int>(state.range(0)), h = static_cast<int>(state.range(1));
+  std::vector<uint8_t> px(static_cast<size_t>(w) * h);
+  uint32_t r = 12345;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {  // a soft glow with sensor noise: like a flame on black
+      r = r * 1664525u + 1013904223u;
+      const int dx = x - w / 2, dy = y - h / 2;
+      const int glow = std::max(0, 220 - (dx * dx + dy * dy * 4) / (w / 4));
+      px[static_cast<size_t>(y) * w + x] =
+          static_cast<uint8_t>(std::min(255, glow + static_cast<int>(r >> 29)));
+    }
+  const char* tmp = std::getenv("TMPDIR");
+  const std::string path =
+      std::string(tmp ? tmp : "/tmp") + "/candela-bench-" + std::to_string(getpid()) + ".png";
+  for (auto _ : state) write_png(path, w, h, 1, px.data());
+  unlink(path.c_str());
+  state.counters["frames_per_s_per_writer"] =
+      benchmark::Counter(1, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(record_png_write)->Args({320, 180})->Args({640, 480})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace candela

@@ -282,7 +282,7 @@ std::vector<InputEvent> wave(int from_x, int step, int frames, bool mirror) {
   Collect c;
   for (int i = 0; i < frames; ++i) {
     const auto img = scene_with_block(from_x + i * step, static_cast<uint32_t>(i));
-    logic.frame(det.feed(img.data()), i * (1'000'000'000 / 15), c);
+    logic.frame(det.feed(img.data()), int64_t{i} * (1'000'000'000 / 15), c);
   }
   return c.events;
 }

@@ -22,20 +22,31 @@ int main(int argc, char** argv) {
       "candela-record"};
   std::string size;
   app.add_option("--device,-d", o.device, "V4L2 capture device")->capture_default_str();
-  app.add_option("--out,-o", o.out, "Output folder (created; must not hold a recording)")->required();
+  app.add_option("--out,-o", o.out, "Output folder (created; must not hold a recording)")
+      ->required();
   app.add_option("--clip", o.clip, "Clip name in the manifest (default: the folder's name)");
-  app.add_option("--size", size, "Frame size WxH (the camera's nearest is used)")->default_str("640x480");
-  app.add_option("--format", o.pixel_format, "Pixel format: GREY, YUYV, UYVY, RGB3, BGR3 (default: camera's first usable)");
-  app.add_option("--fps", o.fps, "Frame rate to ask for")->check(CLI::Range(1, 240))->capture_default_str();
+  app.add_option("--size", size, "Frame size WxH (the camera's nearest is used)")
+      ->default_str("640x480");
+  app.add_option("--format", o.pixel_format,
+                 "Pixel format: GREY, YUYV, UYVY, RGB3, BGR3 (default: camera's first usable)");
+  app.add_option("--fps", o.fps, "Frame rate to ask for")
+      ->check(CLI::Range(1, 240))
+      ->capture_default_str();
   app.add_option("--frames,-n", o.frames, "Stop after N frames");
   app.add_option("--seconds", o.seconds, "Stop after S seconds")->check(CLI::NonNegativeNumber);
   app.add_flag("--color", o.color, "Write RGB PNGs (default: gray luma, like the flame footage)");
   app.add_flag("--keep-auto", o.keep_auto, "Leave auto exposure/gain/white balance alone");
-  app.add_option("--exposure", o.exposure, "Manual exposure (the camera's units; default: current)");
+  app.add_option("--exposure", o.exposure,
+                 "Manual exposure (the camera's units; default: current)");
   app.add_option("--gain", o.gain, "Manual gain (default: current)");
-  app.add_option("--white-balance", o.white_balance, "White balance temperature in K (default: current)");
-  app.add_option("--queue", o.queue, "Frames buffered for the PNG writers")->check(CLI::Range(2, 1024))->capture_default_str();
-  app.add_option("--writers", o.writers, "PNG writer threads")->check(CLI::Range(1, 16))->capture_default_str();
+  app.add_option("--white-balance", o.white_balance,
+                 "White balance temperature in K (default: current)");
+  app.add_option("--queue", o.queue, "Frames buffered for the PNG writers")
+      ->check(CLI::Range(2, 1024))
+      ->capture_default_str();
+  app.add_option("--writers", o.writers, "PNG writer threads")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -45,7 +56,8 @@ int main(int argc, char** argv) {
     char extra = 0;
     if (std::sscanf(size.c_str(), "%dx%d%c", &o.width, &o.height, &extra) != 2 || o.width < 16 ||
         o.height < 16 || o.width > 8192 || o.height > 8192) {
-      std::fprintf(stderr, "candela-record: --size: expected WxH, e.g. 640x480, got '%s'\n", size.c_str());
+      std::fprintf(stderr, "candela-record: --size: expected WxH, e.g. 640x480, got '%s'\n",
+                   size.c_str());
       return kExitUsage;
     }
   }
@@ -55,7 +67,8 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, on_signal);
   const RecordResult r = record(o, g_stop);
   if (r.exit_code == kExitOk)
-    std::fprintf(stderr, "candela-record: %s: %llu frames in %.2f s (%.2f fps), %llu dropped -> %s\n",
+    std::fprintf(stderr,
+                 "candela-record: %s: %llu frames in %.2f s (%.2f fps), %llu dropped -> %s\n",
                  r.message.c_str(), static_cast<unsigned long long>(r.written), r.seconds, r.fps,
                  static_cast<unsigned long long>(r.dropped), o.out.c_str());
   else if (r.written || r.seconds > 0)

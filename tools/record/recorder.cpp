@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <linux/videodev2.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -71,6 +72,17 @@ void write_atomic(const std::string& path, const std::string& text) {
     unlink(tmp.c_str());
     throw RuntimeError(path + ": cannot rename into place: " + std::strerror(err));
   }
+}
+
+// Room kept for the final manifest: a full disk must not cost the list of
+// frames already written. Grown with the manifest; freed just before the
+// final write. False when the disk cannot give that much any more.
+bool grow_reserve(const std::string& path, size_t bytes) {
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) return false;
+  const int r = posix_fallocate(fd, 0, static_cast<off_t>(bytes));
+  close(fd);
+  return r == 0;
 }
 
 std::string utc_now() {
@@ -240,6 +252,14 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
             write_png(frames_dir + "/" + name, f.width, f.height, channels, s->pixels.data());
           } catch (const std::exception& e) {
             error = e.what();
+            // libpng reports a failed fwrite as "Write Error" without errno: ask the filesystem.
+            struct statvfs vfs {};
+            if (statvfs(frames_dir.c_str(), &vfs) == 0 &&
+                static_cast<double>(vfs.f_bavail) * vfs.f_bsize < 2.0 * s->pixels.size() + 65536)
+              error = "No space left on device (" +
+                      std::to_string(static_cast<unsigned long long>(vfs.f_bavail) * vfs.f_bsize /
+                                     1024) +
+                      " KiB free): " + error;
           }
         }
         lock.lock();
@@ -254,6 +274,8 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
   std::string end_reason;
   bool complete = false;
   const std::string started = utc_now();
+  const std::string reserve_path = (out / ".manifest-reserve").string();
+  size_t manifest_bytes = 0;
   auto manifest = [&](bool final_write) {
     std::string frames_json, controls_json, locked_json, dropped_json;
     uint64_t n = 0;
@@ -261,19 +283,24 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
       std::lock_guard<std::mutex> lock(p.mutex);
       for (const auto& [seq, w] : p.written) {
         char b[128];
-        std::snprintf(b, sizeof b, "%s\n    {\"file\":\"frames/%08u.png\",\"sequence\":%u,\"timestamp_ns\":%lld}",
-                      n ? "," : "", seq, seq, static_cast<long long>(w.timestamp_ns));
+        std::snprintf(
+            b, sizeof b,
+            "%s\n    {\"file\":\"frames/%08u.png\",\"sequence\":%u,\"timestamp_ns\":%lld}",
+            n ? "," : "", seq, seq, static_cast<long long>(w.timestamp_ns));
         frames_json += b;
         ++n;
       }
     }
     for (const auto& c : controls)
       controls_json += (controls_json.empty() ? "\n    " : ",\n    ") + json_string(c.name) +
-                       ":{\"id\":" + std::to_string(c.id) + ",\"value\":" + std::to_string(c.value) +
+                       ":{\"id\":" + std::to_string(c.id) +
+                       ",\"value\":" + std::to_string(c.value) +
                        ",\"default\":" + std::to_string(c.default_value) + "}";
     for (const auto& l : locked)
-      locked_json += (locked_json.empty() ? "" : ",") + json_string(l.name) + ":" + json_string(l.outcome);
-    for (uint32_t d : dropped) dropped_json += (dropped_json.empty() ? "" : ",") + std::to_string(d);
+      locked_json +=
+          (locked_json.empty() ? "" : ",") + json_string(l.name) + ":" + json_string(l.outcome);
+    for (uint32_t d : dropped)
+      dropped_json += (dropped_json.empty() ? "" : ",") + std::to_string(d);
     char head[1024];
     std::snprintf(head, sizeof head,
                   "{\n  \"format\": \"candela-recording\",\n  \"version\": 1,\n  \"clip\": %s,\n"
@@ -281,20 +308,34 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
                   "  \"width\": %d,\n  \"height\": %d,\n  \"pixel_format\": \"%s\",\n"
                   "  \"png\": \"%s\",\n  \"fps\": %g,\n  \"requested_fps\": %d,\n",
                   json_string(clip).c_str(), json_string(o.device).c_str(),
-                  json_string(card).c_str(), json_string(driver).c_str(),
-                  started.c_str(), f.width, f.height, fourcc_name(f.fourcc).c_str(),
-                  o.color ? "rgb8" : "gray8", fps, o.fps);
+                  json_string(card).c_str(), json_string(driver).c_str(), started.c_str(), f.width,
+                  f.height, fourcc_name(f.fourcc).c_str(), o.color ? "rgb8" : "gray8", fps, o.fps);
     const std::string text =
-        std::string(head) + "  \"locked\": {" + locked_json + "},\n  \"controls\": {" + controls_json +
-        "\n  },\n  \"frame_count\": " + std::to_string(n) + ",\n  \"frames\": [" + frames_json +
-        "\n  ],\n  \"dropped\": {\"count\": " + std::to_string(dropped.size()) + ", \"sequences\": [" +
-        dropped_json + "]},\n  \"complete\": " + (final_write && complete ? "true" : "false") +
+        std::string(head) + "  \"locked\": {" + locked_json + "},\n  \"controls\": {" +
+        controls_json + "\n  },\n  \"frame_count\": " + std::to_string(n) + ",\n  \"frames\": [" +
+        frames_json + "\n  ],\n  \"dropped\": {\"count\": " + std::to_string(dropped.size()) +
+        ", \"sequences\": [" + dropped_json +
+        "]},\n  \"complete\": " + (final_write && complete ? "true" : "false") +
         ",\n  \"end_reason\": " + json_string(final_write ? end_reason : "recording") + "\n}\n";
+    if (final_write) unlink(reserve_path.c_str());
     write_atomic(manifest_path, text);
+    manifest_bytes = text.size();
     return n;
   };
 
   // --- capture loop -----------------------------------------------------------------
+  if (!grow_reserve(reserve_path, 65536)) {
+    res.exit_code = kExitOutput;
+    res.message = "output disk full: not even 64 KiB free in " + o.out;
+    cap.reset();
+    {
+      std::lock_guard<std::mutex> lock(p.mutex);
+      p.closing = true;
+      p.work.notify_all();
+    }
+    for (auto& t : writers) t.join();
+    return res;
+  }
   const auto t0 = Clock::now();
   auto last_manifest = t0;
   bool have_seq = false;
@@ -343,7 +384,8 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
     silent = 0;
     // Sequence gaps: the driver dropped frames before we saw them.
     if (have_seq && frame.sequence > next_seq)
-      for (uint32_t s = next_seq; s < frame.sequence && dropped.size() < 100000; ++s) dropped.push_back(s);
+      for (uint32_t s = next_seq; s < frame.sequence && dropped.size() < 100000; ++s)
+        dropped.push_back(s);
     have_seq = true;
     next_seq = frame.sequence + 1;
     Slot* slot = nullptr;
@@ -376,6 +418,12 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
       last_manifest = Clock::now();
       try {
         manifest(false);
+        // Twice the manifest (old + new while it is replaced) and room for more frames.
+        if (!grow_reserve(reserve_path, 2 * manifest_bytes + 65536)) {
+          end_reason = "output disk full; No space left on device to keep recording safely";
+          res.exit_code = kExitOutput;
+          break;
+        }
       } catch (const std::exception& e) {
         end_reason = std::string("writing the manifest failed: ") + e.what();
         res.exit_code = kExitOutput;
@@ -407,11 +455,13 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
                   "), the one from the last second stands";
     if (res.exit_code == 0) res.exit_code = kExitOutput;
   }
+  unlink(reserve_path.c_str());
   res.dropped = dropped.size();
   res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   res.fps = res.seconds > 0 ? static_cast<double>(res.written) / res.seconds : 0;
   if (end_reason.find("failed") != std::string::npos &&
-      (end_reason.find("No space") != std::string::npos || end_reason.find("Read-only") != std::string::npos))
+      (end_reason.find("No space") != std::string::npos ||
+       end_reason.find("Read-only") != std::string::npos))
     end_reason = (end_reason.find("No space") != std::string::npos ? "output disk full; "
                                                                    : "output folder read-only; ") +
                  end_reason;

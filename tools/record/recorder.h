@@ -21,17 +21,17 @@ struct RecordOptions {
   int width = 640, height = 480;
   std::string pixel_format;  // e.g. YUYV; empty: the camera's first usable one
   int fps = 30;
-  uint64_t frames = 0;  // stop after this many written frames (0: no limit)
-  double seconds = 0;   // stop after this long (0: no limit)
-  bool color = false;   // RGB PNGs instead of gray (luma)
+  uint64_t frames = 0;     // stop after this many written frames (0: no limit)
+  double seconds = 0;      // stop after this long (0: no limit)
+  bool color = false;      // RGB PNGs instead of gray (luma)
   bool keep_auto = false;  // leave auto exposure/gain/white balance as they are
   int64_t exposure = -1, gain = -1, white_balance = -1;  // -1: keep the current value, locked
-  int queue = 48;     // frames buffered between capture and the PNG writers
-  int writers = 2;    // PNG writer threads
+  int queue = 48;   // frames buffered between capture and the PNG writers
+  int writers = 2;  // PNG writer threads
 };
 
 struct RecordResult {
-  int exit_code = 0;  // 0 ok; see kExit*
+  int exit_code = 0;    // 0 ok; see kExit*
   std::string message;  // the clear one-line reason the recording ended
   uint64_t written = 0, dropped = 0;
   double seconds = 0, fps = 0;  // sustained rate of written frames
@@ -39,8 +39,8 @@ struct RecordResult {
 
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitUsage = 2;
-inline constexpr int kExitOutput = 3;   // output folder cannot be written (read-only, full)
-inline constexpr int kExitCamera = 4;   // no camera / cannot open / unusable format
+inline constexpr int kExitOutput = 3;      // output folder cannot be written (read-only, full)
+inline constexpr int kExitCamera = 4;      // no camera / cannot open / unusable format
 inline constexpr int kExitCameraLost = 5;  // the camera went away mid-recording
 
 // Runs until done or `stop` becomes true (a signal handler sets it).
