@@ -104,6 +104,8 @@ TEST(ControlSocket, RoundTripReachesTheWindField) {
   const std::string dir = temp_dir();
   const std::string path = dir + "/ctl";
   WindSpec spec;
+  // Wind starts at the sampled point itself: no travel delay to wait for.
+  spec.plane_distance = Fixed{};
   InputHub hub({}, spec, path);
   hub.start();
   ASSERT_TRUE(hub.control_ready());

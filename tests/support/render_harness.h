@@ -46,7 +46,8 @@ class RenderHarness {
   // Runs `frames` frames in lockstep (1 step per frame at 60 steps/s).
   void run(uint64_t frames);
   // Draws the last presented frame again and reads it back before it is
-  // presented (so it works on every backend, not only headless).
+  // presented (so it works on every backend, not only headless). Uses the
+  // current GL context: keep one harness alive at a time.
   Frame read();
   uint64_t frames() const { return frames_; }
   Scene& scene() { return *scene_; }
