@@ -1,6 +1,7 @@
 #include "app/frame_loop.h"
 
 #include <chrono>
+#include <thread>
 
 #include "core/clock.h"
 #include "input/input_hub.h"
@@ -10,7 +11,10 @@ namespace candela {
 LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s) {
   using Clock = std::chrono::steady_clock;
   StepClock clock(s.steps_per_second);
-  const bool lockstep = !display.paced_by_vsync();
+  const bool lockstep = !display.paced_by_vsync() && !s.realtime;
+  const bool self_paced = !display.paced_by_vsync() && s.realtime;
+  const auto frame_period = std::chrono::nanoseconds(
+      1'000'000'000LL / (s.frames_per_second > 0 ? s.frames_per_second : 60));
   const int steps_per_frame =
       s.steps_per_second / (s.frames_per_second > 0 ? s.frames_per_second : 60) > 0
           ? s.steps_per_second / s.frames_per_second
@@ -64,6 +68,7 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
     }
     last_present = end;
     ++result.frames;
+    if (self_paced) std::this_thread::sleep_until(begin + frame_period);
   }
   result.steps = clock.steps();
   return result;

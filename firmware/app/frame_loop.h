@@ -19,6 +19,11 @@ struct LoopSettings {
   uint64_t max_frames = 0;  // 0: until quit
   int steps_per_second = 60;
   int frames_per_second = 60;               // lockstep: steps per frame = steps_per_second / fps
+  // Where nothing paces presentation (headless), hold frames_per_second by
+  // wall clock and advance animation by wall time, like a live display
+  // (for automation through the control socket). Off: lockstep, as fast as
+  // frames can be drawn (deterministic recordings, --bench).
+  bool realtime = false;
   const std::atomic<bool>* stop = nullptr;  // set by a signal handler
   FrameStats* stats = nullptr;
   InputHub* inputs = nullptr;  // sensors, camera, control socket: drained once per frame

@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
     ls.steps_per_second = desc.steps_per_second;
     ls.frames_per_second = opt.display.fps;
     ls.stop = &g_stop;
+    ls.realtime = opt.realtime;
     ls.stats = &stats;
     InputHub inputs(desc.inputs, desc.wind, opt.control);
     inputs.start();

@@ -33,6 +33,9 @@ int parse_options(int argc, char** argv, Options& o) {
                  "Frame rate of written video; headless animation advances 1/fps per frame")
       ->check(CLI::Range(1, 240));
   app.add_option("--seed", o.seed, "Random seed (default: the scene's)");
+  app.add_flag("--realtime", o.realtime,
+               "Headless: hold --fps by the wall clock and animate in real time, like a screen "
+               "(default: as fast as possible, one step per frame)");
   app.add_flag("--bench", o.bench, "Print frame-time statistics as one JSON line after the run");
   app.add_flag("--list-elements", o.list_elements, "List the kinds of scene element and exit");
   app.add_option("--log-level", o.log_level, "debug, info, warn or error")

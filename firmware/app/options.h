@@ -14,6 +14,7 @@ struct Options {
   bool test_pattern = false;
   bool check = false;
   bool bench = false;
+  bool realtime = false;
   bool list_elements = false;
   uint64_t frames = 0;  // 0: run until quit
   uint64_t seed = 0;    // 0: the scene's seed

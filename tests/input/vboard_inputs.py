@@ -54,7 +54,7 @@ class Candela:
         self.log_path = os.path.join(WORK, "candela.log")
         self.log = open(self.log_path, "w")
         self.proc = subprocess.Popen(
-            ["nice", "-n", str(nice), CANDELA, "--display", "headless", "--size", "32x24", "--scene", self.scene,
+            ["nice", "-n", str(nice), CANDELA, "--display", "headless", "--realtime", "--size", "32x24", "--scene", self.scene,
              "--control", self.sock_path, *extra], stdout=self.log, stderr=subprocess.STDOUT)
         self.sock = None
         wait_for("the control socket", self._connect, timeout=60)
@@ -114,7 +114,9 @@ def pull(n, up):
 
 
 def gpio_scene(inputs, wind="gust_seconds = 4.0\ngust_speed = 2.0\n"):
-    return "[wind]\n" + wind + "".join("[[input]]\n" + i + "\n" for i in inputs)
+    # Plane S at the origin: wind reaches the sampled point with no travel
+    # delay or attenuation, so `state` shows what the sensor asked for.
+    return "[wind]\nplane_distance = 0.0\n" + wind + "".join("[[input]]\n" + i + "\n" for i in inputs)
 
 
 def case_gpio_button_gust():
@@ -153,11 +155,12 @@ def case_gpio_debounce_burst():
     # A real press afterwards is the synchronisation point: once it counts, the
     # burst before it has long been decided.
     pull(4, True)
-    b = wait_for("the real press", lambda: (lambda i: i if i["activations"] >= 1 else None)(c.input("b")),
+    b = wait_for("the real press to reach the wind field",
+                 lambda: (lambda i: i if i["activations"] >= 1 and i["events"] >= 1 else None)(c.input("b")),
                  timeout=15)
     check(b["activations"] == 1 and b["events"] == 1,
           "the burst was swallowed; only the real press counted (%s)" % b)
-    st = c.state()
+    st = wait_for("the gust", lambda: (lambda s: s if s["wind"]["x"] < 0 else None)(c.state()), timeout=10)
     check(st["wind"]["x"] < 0, "the gust from the right blows toward -x")
     pull(4, False)
     c.stop()
@@ -249,7 +252,7 @@ def case_camera_vivid_motion():
     cross = vivid_menu(dev, "test_pattern", "Ten Pixels Wide Cross")
     vivid_set(dev, test_pattern=cross, osd_text_mode=2,
               horizontal_movement=vivid_menu(dev, "horizontal_movement", "Move Right Fast"))
-    c = Candela("[wind]\ngust_seconds = 6.0\n[[input]]\nkind = \"camera\"\nname = \"cam\"\n"
+    c = Candela("[wind]\nplane_distance = 0.0\ngust_seconds = 6.0\n[[input]]\nkind = \"camera\"\nname = \"cam\"\n"
                 "device = \"%s\"\nmirror = false\nsensitivity = 8\ncooldown_ms = 0\n" % dev)
     wait_for("camera frames", lambda: c.input("cam").get("frames", 0) > 3, timeout=60)
     st = wait_for("a gust to the right",
