@@ -138,6 +138,9 @@ FlameModel FlameModel::from(ModelFile file) {
   m.colour.glow_radius = static_cast<float>(get_num(f, col, "model.colour", "glow_radius", 0, 1));
   m.colour.glow_strength =
       static_cast<float>(get_num(f, col, "model.colour", "glow_strength", 0, 4));
+  if (col.contains("black_level"))  // optional; older files use the default
+    m.colour.black_level =
+        static_cast<float>(get_num(f, col, "model.colour", "black_level", 0, 255));
 
   auto lf_it = info.find("learning_flames");
   if (lf_it != info.end()) {
@@ -151,6 +154,8 @@ FlameModel FlameModel::from(ModelFile file) {
     L.width = get_int(f, lf, p, "width", 1, 16384);
     L.height = get_int(f, lf, p, "height", 1, 16384);
     L.frames = get_int(f, lf, p, "frames", 1, 1 << 24);
+    L.base_y = static_cast<float>(get_num(f, lf, p, "base_y", -1e6, 1e6));
+    L.span = static_cast<float>(get_num(f, lf, p, "span", 0.1, 100));
     L.dim = L.np + L.nw + 1 + L.ne;
     L.mean = quantised(f, "lf.mean", 1, L.width, L.height);
     L.eigen = quantised(f, "lf.eigen", L.ne, L.width, L.height);
