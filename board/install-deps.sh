@@ -20,6 +20,7 @@ build=(
   libeigen3-dev libgpiod-dev gpiod
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  nlohmann-json3-dev zlib1g-dev
 )
 tests=(
   ffmpeg python3 python3-numpy xvfb xauth

@@ -1,0 +1,103 @@
+// Ingest: PNG folders and video files give the same aligned frames; the flame
+// base lands where asked; several plumes are detected; the dataset round-trips.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/image.h"
+#include "model_test_support.h"
+
+namespace ct = candela::tools;
+
+TEST(Ingest, VideoAndPngFoldersAgree) {
+  const std::string dir = std::filesystem::temp_directory_path() / "candela_ingest_test";
+  std::filesystem::create_directories(dir);
+  const std::string video = dir + "/schodl.mkv";
+  // A lossless video of the first 20 frames, made by the ffmpeg program.
+  const std::string cmd = "ffmpeg -loglevel error -y -framerate 30 -i " +
+                          ct::test::clip_dir("candle_schodl_singan") +
+                          "/frames/%05d.png -frames:v 20 -c:v ffv1 " + video;
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  ct::SourceClip from_png = ct::read_source(ct::test::clip_dir("candle_schodl_singan"), 20);
+  ct::SourceClip from_video = ct::read_source(video);
+  ASSERT_EQ(from_video.frames(), 20);
+  ASSERT_EQ(from_png.frames(), 20);
+  EXPECT_NEAR(from_video.fps, 30.0, 1e-6);
+  EXPECT_EQ(from_video.width, from_png.width);
+  double diff = 0;
+  for (size_t i = 0; i < from_png.luma.size(); ++i)
+    diff += std::abs(from_png.luma[i] - from_video.luma[i]);
+  // Gray -> YUV -> RGB conversion costs at most a level or so.
+  EXPECT_LT(diff / static_cast<double>(from_png.luma.size()), 0.004);
+}
+
+TEST(Ingest, FindsPngNamesAndFpsFromInfo) {
+  ct::SourceClip c = ct::read_source(ct::test::clip_dir("candle_breeze_tfg_flameshaken"), 5);
+  EXPECT_EQ(c.name, "candle_breeze_tfg_flameshaken");
+  EXPECT_NEAR(c.fps, 60.0, 1e-9);
+  EXPECT_EQ(c.frames(), 5);
+}
+
+TEST(Ingest, AlignsTheFlameBaseAndRemovesTheBackground) {
+  ct::IngestOptions o;
+  o.width = 64;
+  o.height = 104;
+  for (const char* clip : {"candle_schodl_singan", "candle_breeze_tfg_flameshaken"}) {
+    ct::Dataset d = ct::ingest({ct::read_source(ct::test::clip_dir(clip), 0, 4)}, o);
+    std::vector<double> rows(d.height, 0.0);
+    double corner = 0;
+    for (int f = 0; f < d.frames(); ++f)
+      for (int y = 0; y < d.height; ++y)
+        for (int x = 0; x < d.width; ++x) {
+          rows[y] += d.frame(f)[y * d.width + x];
+          if (y < 8 && x < 8) corner += d.frame(f)[y * d.width + x];
+        }
+    const double peak = *std::max_element(rows.begin(), rows.end());
+    int base = d.height - 1;
+    while (base > 0 && rows[base] < 0.1 * peak) --base;
+    EXPECT_NEAR(base, o.base_row * d.height, 3.0) << clip;
+    EXPECT_LT(corner / (64.0 * d.frames()), 1.0) << clip << ": background left in the corner";
+  }
+}
+
+TEST(Ingest, CountsDisjointPlumes) {
+  std::vector<uint8_t> img(40 * 40, 0);
+  auto blob = [&](int cx, int cy, int r) {
+    for (int y = 0; y < 40; ++y)
+      for (int x = 0; x < 40; ++x)
+        if ((x - cx) * (x - cx) + (y - cy) * (y - cy) <= r * r) img[y * 40 + x] = 200;
+  };
+  blob(20, 25, 8);
+  EXPECT_EQ(ct::count_plumes(img.data(), 40, 40, 0.25f, 0.03f), 1);
+  blob(20, 6, 4);  // a detached tip above
+  EXPECT_EQ(ct::count_plumes(img.data(), 40, 40, 0.25f, 0.03f), 2);
+  img[0] = 200;  // a single hot pixel is not a plume
+  EXPECT_EQ(ct::count_plumes(img.data(), 40, 40, 0.25f, 0.03f), 2);
+}
+
+TEST(Ingest, DatasetRoundTripsAndLabelsLand) {
+  ct::IngestOptions o;
+  o.width = 32;
+  o.height = 48;
+  o.labels.push_back(ct::parse_label("candle_schodl_singan:2-5:calm", "test"));
+  ct::Dataset d = ct::ingest({ct::read_source(ct::test::clip_dir("candle_schodl_singan"), 10)}, o);
+  const std::string dir = std::filesystem::temp_directory_path() / "candela_dataset_rt";
+  ct::save_dataset(d, dir);
+  ct::Dataset back = ct::load_dataset(dir);
+  EXPECT_EQ(back.pixels, d.pixels);
+  ASSERT_EQ(back.clips.size(), 1u);
+  ASSERT_EQ(back.clips[0].labels.size(), 1u);
+  EXPECT_EQ(back.clips[0].labels[0].from, 2);
+  EXPECT_EQ(back.clips[0].labels[0].label, "calm");
+  EXPECT_THROW(ct::parse_label("nocolon", "test"), candela::ConfigError);
+  // A frame file of the wrong size is refused, naming it.
+  std::filesystem::resize_file(dir + "/frames.u8", 100);
+  try {
+    ct::load_dataset(dir);
+    FAIL();
+  } catch (const candela::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("frames.u8"), std::string::npos);
+  }
+}

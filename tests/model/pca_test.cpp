@@ -1,0 +1,106 @@
+// EigenFires PCA against numpy's SVD on a real clip, and held-out
+// reconstruction PSNR on the real clips.
+#include "pca.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "model_build.h"
+#include "model_test_support.h"
+
+namespace ct = candela::tools;
+
+TEST(Pca, MatchesNumpySvdOnARealClip) {
+  // The calm candle, 60 frames at 48x80: 3840-dimensional points.
+  ct::Dataset d = ct::test::small_dataset("candle_schodl_singan", 48, 80, 4);
+  ASSERT_EQ(d.frames(), 60);
+  const int k = 8;
+  ct::PcaOptions o;
+  o.components = k;
+  ct::PcaResult r = ct::pca_snapshot(d, o);
+  ASSERT_EQ(r.components(), k);
+
+  const std::string dir = std::filesystem::temp_directory_path() / "candela_pca_test";
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream f(dir + "/frames.u8", std::ios::binary);
+    f.write(reinterpret_cast<const char*>(d.pixels.data()),
+            static_cast<std::streamsize>(d.pixels.size()));
+  }
+  const std::string cmd =
+      "/usr/bin/python3 " + std::string(CANDELA_SOURCE_DIR) + "/tests/model/pca_reference.py " +
+      dir + "/frames.u8 " + std::to_string(d.frames()) + " " + std::to_string(d.height) + " " +
+      std::to_string(d.width) + " " + std::to_string(k) + " " + dir + "/ref.txt";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::ifstream in(dir + "/ref.txt");
+  std::string line;
+  std::getline(in, line);
+  std::istringstream vs(line);
+  const Eigen::Index n = r.mean.size();
+  Eigen::MatrixXd ref(n, k);
+  for (int i = 0; i < k; ++i) {
+    double v;
+    vs >> v;
+    EXPECT_NEAR(r.variance[i], v, 1e-4 * v) << "variance of component " << i;
+  }
+  for (int i = 0; i < k; ++i)
+    for (Eigen::Index p = 0; p < n; ++p) in >> ref(p, i);
+  ASSERT_TRUE(in) << "reference output incomplete";
+  // Same principal subspace: cosines of the principal angles between the
+  // first j directions are 1 for every j (each direction sign-free).
+  for (int j = 1; j <= k; ++j) {
+    Eigen::MatrixXd c = r.basis.leftCols(j).cast<double>().transpose() * ref.leftCols(j);
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(c);
+    EXPECT_GT(svd.singularValues().minCoeff(), 1.0 - 1e-4) << "subspace of the first " << j;
+    EXPECT_NEAR(std::abs(c(j - 1, j - 1)), 1.0, 1e-4) << "direction " << j - 1;
+  }
+}
+
+TEST(Pca, HeldOutFramesReconstructWellOnRealClips) {
+  // Every 10th frame left out of the fit, then projected and rebuilt.
+  struct Case {
+    const char* clip;
+    double min_db_at_16;
+  };
+  for (const Case& c :
+       {Case{"candle_schodl_singan", 30.0}, Case{"candle_breeze_tfg_flameshaken", 21.0}}) {
+    ct::Dataset d = ct::test::small_dataset(c.clip, 48, 80, 1);
+    ct::BuildOptions o;
+    o.pca.components = 32;
+    ct::BuiltModel m = ct::build_model(d, o);
+    ASSERT_FALSE(m.holdout.empty());
+    double last = 0;
+    for (const auto& row : m.psnr) {
+      std::printf("%s: E=%d train %.2f dB, held-out %.2f dB\n", c.clip, row.components,
+                  row.train_db, row.holdout_db);
+      EXPECT_GE(row.holdout_db, last - 1e-9) << "PSNR must not fall as E grows";
+      EXPECT_LE(row.holdout_db, row.train_db + 0.5) << "held-out frames are not fitted";
+      last = row.holdout_db;
+      if (row.components == 16) {
+        EXPECT_GT(row.holdout_db, c.min_db_at_16) << c.clip;
+      }
+    }
+  }
+}
+
+TEST(Pca, HeldOutProjectionIsTheLeastSquaresFit) {
+  // A held-out frame's weights are basis^T (frame - mean); rebuilding from them
+  // gives exactly the MSE the PSNR table uses.
+  ct::Dataset d = ct::test::small_dataset("candle_breeze_tfg_flameshaken", 32, 48, 3);
+  ct::PcaOptions o;
+  o.components = 6;
+  o.holdout = {5, 17};
+  ct::PcaResult r = ct::pca_snapshot(d, o);
+  for (int f : o.holdout) {
+    Eigen::VectorXf x(r.mean.size());
+    for (Eigen::Index p = 0; p < x.size(); ++p) x[p] = d.frame(f)[p];
+    Eigen::VectorXf rec = r.mean + r.basis * r.weights.row(f).transpose();
+    const double mse = (x - rec).squaredNorm() / static_cast<double>(x.size());
+    EXPECT_NEAR(mse, r.mse(f, 6), 1e-3 * mse + 1e-6);
+  }
+}

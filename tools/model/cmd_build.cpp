@@ -1,0 +1,85 @@
+// candela-tool build DATASET --out MODEL
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "model_build.h"
+#include "subcommand.h"
+
+namespace {
+
+int run_build(int argc, char** argv) {
+  CLI::App app{"Build a flame model (EigenFires PCA, motion graph) from a dataset made by ingest",
+               "candela-tool build"};
+  std::string dataset, out, report;
+  candela::tools::BuildOptions opt;
+  int bits = 16;
+  app.add_option("DATASET", dataset, "dataset folder")->required();
+  app.add_option("--out", out, "model file to write")->required();
+  auto* comp = app.add_option("--components", opt.pca.components, "number of EigenFires E");
+  app.add_option("--variance", opt.pca.variance,
+                 "else: fewest EigenFires explaining this share of the variance")
+      ->check(CLI::Range(0.5, 1.0))
+      ->capture_default_str()
+      ->excludes(comp);
+  app.add_option("--max-components", opt.pca.max_components, "cap for --variance")
+      ->capture_default_str();
+  app.add_option("--holdout", opt.holdout_every,
+                 "leave every n-th frame out of the fit to measure PSNR (0: none)")
+      ->capture_default_str();
+  app.add_option("--bits", bits, "eigen-image quantisation: 8 or 16")
+      ->check(CLI::IsMember({8, 16}))
+      ->capture_default_str();
+  app.add_option("--theta-min", opt.graph.theta_min,
+                 "smallest step of the motion graph (default: half the median step)");
+  app.add_option("--successors", opt.graph.max_successors, "jumps per frame in the motion graph")
+      ->capture_default_str();
+  app.add_option("--min-jump", opt.graph.min_jump, "a jump lands at least this many frames away")
+      ->capture_default_str();
+  app.add_option("--hue", opt.colour.hue, "default colour: hue (degrees)")
+      ->check(CLI::Range(0.0, 360.0))
+      ->capture_default_str();
+  app.add_option("--saturation", opt.colour.saturation, "default colour: saturation")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_option("--report", report, "folder for the reports (default: MODEL.report)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    auto d = candela::tools::load_dataset(dataset);
+    opt.eigen_dtype = bits == 8 ? candela::model::DType::kU8 : candela::model::DType::kU16;
+    opt.progress = [](const std::string& s) { std::fprintf(stderr, "build: %s\n", s.c_str()); };
+    opt.provenance_options = {{"dataset", dataset},
+                              {"components", opt.pca.components},
+                              {"variance", opt.pca.variance},
+                              {"max_components", opt.pca.max_components},
+                              {"holdout", opt.holdout_every},
+                              {"bits", bits},
+                              {"theta_min", opt.graph.theta_min},
+                              {"successors", opt.graph.max_successors},
+                              {"min_jump", opt.graph.min_jump}};
+    auto m = candela::tools::build_model(d, opt);
+    m.writer.write(out);
+    if (report.empty()) report = out + ".report";
+    candela::tools::write_reports(d, m, report);
+    std::printf("%s: %d EigenFires of %dx%d over %d frames (%.2f%% of the variance)\n", out.c_str(),
+                m.pca.components(), d.width, d.height, d.frames(),
+                100.0 * m.pca.variance.head(m.pca.components()).sum() / m.pca.total_variance);
+    std::printf("   E   train dB  held-out dB\n");
+    for (const auto& r : m.psnr)
+      std::printf("%4d   %7.2f   %7.2f\n", r.components, r.train_db, r.holdout_db);
+    std::printf("motion graph: %zu edges, theta_min %.1f; reports in %s\n",
+                m.graph.successors.size(), m.graph.theta_min, report.c_str());
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "candela-tool build: %s\n", e.what());
+    return 1;
+  }
+}
+
+const candela::tool::Registration reg{
+    "build", "dataset -> flame model file (EigenFires, motion graph)", run_build};
+
+}  // namespace

@@ -1,0 +1,42 @@
+// A dataset: aligned, background-free gray flame frames of one common size
+// from one or more clips, plus a manifest. On disk (a folder):
+//   manifest.json  width, height, frames, clips [{name, source, first, count,
+//                  fps, labels [{from, to, label}]}], multi_plume [frame...],
+//                  intensity "linear", ingest options
+//   frames.u8      frames x height x width bytes (linear luma, 0..255)
+#pragma once
+
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "model/flame_model.h"
+
+namespace candela::tools {
+
+struct Dataset {
+  int width = 0, height = 0;
+  std::vector<uint8_t> pixels;  // frames x height x width
+  std::vector<model::ClipInfo> clips;
+  // 1 where a frame shows two or more disjoint plumes: the Learning Flames
+  // model cannot represent it and leaves it out (EigenFires keeps it).
+  std::vector<uint8_t> multi_plume;
+  nlohmann::json options = nlohmann::json::object();  // how it was ingested
+
+  int frames() const { return static_cast<int>(multi_plume.size()); }
+  size_t frame_pixels() const { return static_cast<size_t>(width) * height; }
+  const uint8_t* frame(int i) const { return pixels.data() + frame_pixels() * i; }
+};
+
+void save_dataset(const Dataset& d, const std::string& dir);
+// Validates the manifest and the frame file (ConfigError naming file and key).
+Dataset load_dataset(const std::string& dir);
+
+// Picks every `step`-th frame and/or resamples to `frames` frames by blending
+// neighbours (used to make large benchmark sets from short clips).
+Dataset resample_dataset(const Dataset& d, int frames);
+
+nlohmann::json clips_to_json(const std::vector<model::ClipInfo>& clips);
+
+}  // namespace candela::tools

@@ -1,0 +1,44 @@
+// `candela-tool build`: dataset -> EigenFires PCA + motion graph (+ Learning
+// Flames, when enabled) -> one model file, plus the reports.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dataset.h"
+#include "model/model_writer.h"
+#include "pca.h"
+#include "transitions.h"
+
+namespace candela::tools {
+
+struct BuildOptions {
+  PcaOptions pca;
+  int holdout_every = 10;  // every n-th frame is left out of the fit (0: none); still in the model
+  model::DType eigen_dtype = model::DType::kU16;
+  MotionGraphOptions graph;
+  model::ColourDefaults colour;
+  bool learning_flames = false;
+  nlohmann::json provenance_options = nlohmann::json::object();
+  std::function<void(const std::string&)> progress;
+};
+
+struct PsnrRow {
+  int components;
+  double train_db, holdout_db;
+};
+
+struct BuiltModel {
+  PcaResult pca;
+  MotionGraphData graph;
+  std::vector<int> holdout;
+  std::vector<PsnrRow> psnr;  // reconstruction PSNR versus E
+  model::ModelWriter writer;
+};
+
+BuiltModel build_model(const Dataset& d, const BuildOptions& opt);
+// psnr.txt + psnr.png, eigenfires.png (contact sheet), trajectory.png (first three weights).
+void write_reports(const Dataset& d, const BuiltModel& m, const std::string& dir);
+std::string tool_version();
+
+}  // namespace candela::tools

@@ -1,0 +1,126 @@
+#include "render.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace candela::tools {
+
+namespace {
+float linear_to_srgb(float v) {
+  v = std::clamp(v, 0.0f, 1.0f);
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+float hls_channel(float m1, float m2, float h) {
+  h = h - std::floor(h);
+  if (h < 1.0f / 6) return m1 + (m2 - m1) * 6 * h;
+  if (h < 0.5f) return m2;
+  if (h < 2.0f / 3) return m1 + (m2 - m1) * (2.0f / 3 - h) * 6;
+  return m1;
+}
+
+// Separable Gaussian blur of a float RGB buffer, in place.
+void blur(std::vector<float>& rgb, int w, int h, float sigma) {
+  if (sigma < 0.5f) return;
+  const int r = static_cast<int>(std::ceil(3 * sigma));
+  std::vector<float> k(2 * r + 1);
+  float sum = 0;
+  for (int i = -r; i <= r; ++i) sum += k[i + r] = std::exp(-0.5f * i * i / (sigma * sigma));
+  for (float& v : k) v /= sum;
+  std::vector<float> tmp(rgb.size());
+  for (int pass = 0; pass < 2; ++pass) {
+    const int n = pass == 0 ? w : h, m = pass == 0 ? h : w;
+    for (int a = 0; a < m; ++a)
+      for (int b = 0; b < n; ++b)
+        for (int c = 0; c < 3; ++c) {
+          float acc = 0;
+          for (int i = -r; i <= r; ++i) {
+            const int bb = std::clamp(b + i, 0, n - 1);
+            const size_t at =
+                pass == 0 ? (static_cast<size_t>(a) * w + bb) : (static_cast<size_t>(bb) * w + a);
+            acc += k[i + r] * rgb[3 * at + c];
+          }
+          const size_t at =
+              pass == 0 ? (static_cast<size_t>(a) * w + b) : (static_cast<size_t>(b) * w + a);
+          tmp[3 * at + c] = acc;
+        }
+    rgb.swap(tmp);
+  }
+}
+}  // namespace
+
+Image gray_image(const float* gray, int width, int height) {
+  Image img;
+  img.width = width;
+  img.height = height;
+  img.channels = 1;
+  img.pixels.resize(static_cast<size_t>(width) * height);
+  for (size_t p = 0; p < img.pixels.size(); ++p)
+    img.pixels[p] = static_cast<uint8_t>(std::lround(255.0f * linear_to_srgb(gray[p] / 255.0f)));
+  return img;
+}
+
+Image colourise(const float* gray, int width, int height, float hue_deg, float saturation,
+                float glow_radius, float glow_strength) {
+  const size_t n = static_cast<size_t>(width) * height;
+  std::vector<float> rgb(3 * n);
+  const float h = hue_deg / 360.0f;
+  for (size_t p = 0; p < n; ++p) {
+    const float l = linear_to_srgb(gray[p] / 255.0f);  // lightness on the display's scale
+    const float m2 = l <= 0.5f ? l * (1 + saturation) : l + saturation - l * saturation;
+    const float m1 = 2 * l - m2;
+    rgb[3 * p] = hls_channel(m1, m2, h + 1.0f / 3);
+    rgb[3 * p + 1] = hls_channel(m1, m2, h);
+    rgb[3 * p + 2] = hls_channel(m1, m2, h - 1.0f / 3);
+  }
+  if (glow_strength > 0 && glow_radius > 0) {
+    std::vector<float> glow = rgb;
+    blur(glow, width, height, glow_radius * static_cast<float>(height));
+    for (size_t i = 0; i < rgb.size(); ++i) rgb[i] += glow_strength * glow[i];
+  }
+  Image img;
+  img.width = width;
+  img.height = height;
+  img.channels = 3;
+  img.pixels.resize(3 * n);
+  for (size_t i = 0; i < rgb.size(); ++i)
+    img.pixels[i] = static_cast<uint8_t>(std::lround(255.0f * std::clamp(rgb[i], 0.0f, 1.0f)));
+  return img;
+}
+
+Canvas::Canvas(int w, int h, std::array<uint8_t, 3> bg) {
+  img.width = w;
+  img.height = h;
+  img.channels = 3;
+  img.pixels.resize(static_cast<size_t>(w) * h * 3);
+  for (size_t p = 0; p < img.pixels.size(); p += 3)
+    for (int c = 0; c < 3; ++c) img.pixels[p + c] = bg[c];
+}
+
+void Canvas::dot(int x, int y, std::array<uint8_t, 3> c) {
+  if (x < 0 || y < 0 || x >= img.width || y >= img.height) return;
+  for (int k = 0; k < 3; ++k) img.row(y)[3 * x + k] = c[k];
+}
+
+void Canvas::line(double x0, double y0, double x1, double y1, std::array<uint8_t, 3> c) {
+  const int n = static_cast<int>(std::ceil(std::max(std::abs(x1 - x0), std::abs(y1 - y0)))) + 1;
+  for (int i = 0; i <= n; ++i) {
+    const double t = static_cast<double>(i) / n;
+    dot(static_cast<int>(std::lround(x0 + t * (x1 - x0))),
+        static_cast<int>(std::lround(y0 + t * (y1 - y0))), c);
+  }
+}
+
+void Canvas::rect(int x0, int y0, int x1, int y1, std::array<uint8_t, 3> c) {
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) dot(x, y, c);
+}
+
+std::array<uint8_t, 3> palette(int i) {
+  static const std::array<uint8_t, 3> p[] = {{220, 50, 32},   {30, 120, 200}, {40, 160, 60},
+                                             {230, 150, 0},   {140, 60, 170}, {0, 170, 170},
+                                             {120, 120, 120}, {200, 80, 140}};
+  return p[i % 8];
+}
+
+}  // namespace candela::tools

@@ -1,0 +1,30 @@
+// Pictures made by the tools: a gray flame coloured in HLS (gray as
+// lightness, chosen hue and saturation) with a glow, and the report plots.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+
+namespace candela::tools {
+
+// gray: linear intensity 0..255 (values outside are clamped). Returns RGB.
+Image colourise(const float* gray, int width, int height, float hue_deg, float saturation,
+                float glow_radius, float glow_strength);
+// Linear 0..255 to an 8-bit sRGB-encoded gray image.
+Image gray_image(const float* gray, int width, int height);
+
+// A small RGB raster for plots.
+struct Canvas {
+  Image img;
+  Canvas(int w, int h, std::array<uint8_t, 3> bg = {255, 255, 255});
+  void dot(int x, int y, std::array<uint8_t, 3> c);
+  void line(double x0, double y0, double x1, double y1, std::array<uint8_t, 3> c);
+  void rect(int x0, int y0, int x1, int y1, std::array<uint8_t, 3> c);  // filled
+};
+// Distinct colours for clips / series.
+std::array<uint8_t, 3> palette(int i);
+
+}  // namespace candela::tools
