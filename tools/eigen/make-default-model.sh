@@ -17,8 +17,8 @@ trap 'rm -rf "$work"' EXIT
 
 # Clips: 30 fps, 96x160-cell candle preset. Wind in cells/s (+ = to the right).
 "$tool" simulate -q --preset candle --no-fields --seed 11 --frames 300 --wind none --name calm --out "$work/calm"
-"$tool" simulate -q --preset candle --no-fields --seed 12 --frames 150 --wind 0:5 --name breeze-right --out "$work/breeze-right"
-"$tool" simulate -q --preset candle --no-fields --seed 13 --frames 150 --wind 0:-5 --name breeze-left --out "$work/breeze-left"
+"$tool" simulate -q --preset candle --no-fields --seed 12 --frames 150 --wind 0:10 --name breeze-right --out "$work/breeze-right"
+"$tool" simulate -q --preset candle --no-fields --seed 13 --frames 150 --wind 0:-10 --name breeze-left --out "$work/breeze-left"
 
 "$tool" ingest "$work/calm" "$work/breeze-right" "$work/breeze-left" --out "$work/dataset" \
   --width 64 --height 96 \
