@@ -22,13 +22,11 @@ uniform float u_height;       // deformed: base-to-tip length
 uniform int u_deform;         // 0: rigid
 
 in vec2 a_grid;  // 0..1 over the whole billboard
-out vec2 v_flame_uv;  // flame image: u right, v up (0 = base)
-out vec2 v_glow_uv;
+out vec2 v_glow_uv;   // over the sprite (flame + glow margin), top row first
 
 void main() {
   vec2 uv = vec2(mix(-u_margin.x, 1.0 + u_margin.y, a_grid.x),
                  mix(-u_margin.z, 1.0 + u_margin.w, a_grid.y));
-  v_flame_uv = uv;
   v_glow_uv = vec2(a_grid.x, 1.0 - a_grid.y);  // the glow texture is stored top row first
   float x = (uv.x - 0.5) * u_size.x / u_size.y;
   float y = uv.y;

@@ -17,10 +17,11 @@ uniform usampler2DArray u_stack;
 uniform int u_layers;
 uniform vec4 u_coef[MAX_VEC4];
 uniform float u_bias;
+uniform ivec2 u_origin;  // where the image starts in the target
 out vec4 o_gray;
 
 void main() {
-  ivec2 p = ivec2(gl_FragCoord.xy);
+  ivec2 p = ivec2(gl_FragCoord.xy) - u_origin;
   float v = u_bias;
 #ifndef LAYERED
   for (int l = 0; l < u_layers; ++l)

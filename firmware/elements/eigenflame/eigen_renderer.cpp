@@ -124,6 +124,7 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
   u_layers_ = program_.uniform("u_layers");
   u_coef_ = program_.uniform("u_coef");
   u_bias_ = program_.uniform("u_bias");
+  u_origin_ = program_.uniform("u_origin");
   target_ = make_target(width_, height_);
   fbo_ = make_fbo_for(target_, "reconstruction");
   vao_ = make_vertex_array();
@@ -131,6 +132,11 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
 }
 
 void EigenReconstructor::reconstruct(std::span<const float> weights) {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+  draw_at(weights, 0, 0);
+}
+
+void EigenReconstructor::draw_at(std::span<const float> weights, int x, int y) {
   // Fold weights and dequantisation: sum_k w_k (offset_k + scale_k q_k)
   //   = sum_k (w_k scale_k) q_k + sum_k w_k offset_k.
   const int n = std::min(components_, static_cast<int>(weights.size()));
@@ -141,8 +147,7 @@ void EigenReconstructor::reconstruct(std::span<const float> weights) {
     coef_[static_cast<size_t>(k) + 1] = w * eigen_scale_[static_cast<size_t>(k)];
     bias += w * eigen_offset_[static_cast<size_t>(k)];
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
-  glViewport(0, 0, width_, height_);
+  glViewport(x, y, width_, height_);
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_SCISSOR_TEST);
@@ -153,14 +158,21 @@ void EigenReconstructor::reconstruct(std::span<const float> weights) {
   glUniform1i(u_layers_, layers_);
   glUniform4fv(u_coef_, (entries_ + 3) / 4, coef_.data());
   glUniform1f(u_bias_, bias);
+  glUniform2i(u_origin_, x, y);
   glBindVertexArray(vao_.get());
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+// ---------------------------------------------------------------------------
+
 EigenRenderer::EigenRenderer(const ImageStack& mean, const ImageStack& eigen, StackLayout layout,
-                             int max_components, const FlameLookSettings& look)
-    : recon_(mean, eigen, layout, max_components), look_(look) {
-  const int w = recon_.width(), h = recon_.height();
+                             int max_components, const FlameLookSettings& look,
+                             std::span<const float> weights)
+    : recon_(mean, eigen, layout, max_components),
+      look_(look),
+      weights_(weights),
+      batch_(EigenBatch::shared()) {
+  const int h = recon_.height(), w = recon_.width();
   ramp_ = upload_rgba8(256, 1, look_.ramp.data(), true);
   glBindTexture(GL_TEXTURE_2D, ramp_.get());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -168,35 +180,113 @@ EigenRenderer::EigenRenderer(const ImageStack& mean, const ImageStack& eigen, St
   // Glow at half size, padded by its radius on every side.
   const int half_w = (w + 1) / 2, half_h = (h + 1) / 2;
   radius_ = std::clamp(static_cast<int>(std::ceil(look_.glow_radius * half_h)), 1, 32);
-  pad_ = radius_;
-  glow_w_ = half_w + 2 * pad_;
-  glow_h_ = half_h + 2 * pad_;
-  margin_x_ = static_cast<float>(pad_) / half_w;
-  margin_y_ = static_cast<float>(pad_) / half_h;
-  glow_a_ = make_target(glow_w_, glow_h_);
-  glow_b_ = make_target(glow_w_, glow_h_);
-  fbo_a_ = make_fbo_for(glow_a_, "glow");
-  fbo_b_ = make_fbo_for(glow_b_, "glow");
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glow_w_ = half_w + 2 * radius_;
+  glow_h_ = half_h + 2 * radius_;
+  // Gaussian taps (sigma = radius / 2), paired for bilinear fetches: one
+  // fetch between texels i and i + 1 reads both with the right weights.
+  {
+    const double sigma = std::max(0.5, radius_ * 0.5);
+    auto g = [&](int i) { return std::exp(-0.5 * i * i / (sigma * sigma)); };
+    double total = g(0);
+    for (int i = 1; i <= radius_; ++i) total += 2 * g(i);
+    tap_offset_[0] = 0;
+    tap_weight_[0] = static_cast<float>(g(0) / total);
+    taps_ = 1;
+    for (int i = 1; i <= radius_ && taps_ < kMaxTaps; i += 2) {
+      const double a = g(i), b = i + 1 <= radius_ ? g(i + 1) : 0.0;
+      tap_offset_[static_cast<size_t>(taps_)] = static_cast<float>((i * a + (i + 1) * b) / (a + b));
+      tap_weight_[static_cast<size_t>(taps_)] = static_cast<float>((a + b) / total);
+      ++taps_;
+    }
+  }
+  // The glow's colour: twice the ramp's colour at half lightness (where HLS
+  // reaches the pure hue), so a dim glow matches the coloured flame.
+  glow_tint_ = {look_.ramp[128 * 4] * (2.0f / 255), look_.ramp[128 * 4 + 1] * (2.0f / 255),
+                look_.ramp[128 * 4 + 2] * (2.0f / 255)};
+  margin_x_ = look_.glow_strength > 0 ? static_cast<float>(radius_) / half_w : 0.0f;
+  margin_y_ = look_.glow_strength > 0 ? static_cast<float>(radius_) / half_h : 0.0f;
+  sprite_w_ = w + 2 * static_cast<int>(std::lround(margin_x_ * w));
+  sprite_h_ = h + 2 * static_cast<int>(std::lround(margin_y_ * h));
+  batch_->add(this);
+}
 
+EigenRenderer::~EigenRenderer() { batch_->remove(this); }
+
+void EigenRenderer::prepare(uint64_t frame, int screen_w, int screen_h) {
+  batch_->prepare(frame, screen_w, screen_h);
+}
+
+void EigenRenderer::composite(const Mat4& view, const Mat4& view_projection,
+                              const FlamePose& pose) {
+  Vec3 right{view.at(0, 0), 0.0f, view.at(0, 2)};
+  right = length(right) > 1e-6f ? normalize(right) : Vec3{1, 0, 0};
+  const float aspect = static_cast<float>(recon_.width()) / recon_.height();
+  const EigenBatch::FlameUniforms& u = batch_->flame_uniforms();
+  batch_->flame_program().use();
+  glUniformMatrix4fv(u.vp, 1, GL_FALSE, view_projection.m);
+  glUniform3f(u.origin, pose.origin.x, pose.origin.y, pose.origin.z);
+  glUniform3f(u.right, right.x, right.y, right.z);
+  glUniform2f(u.size, pose.height * aspect * pose.widen, pose.height);
+  glUniform4f(u.margin, margin_x_, margin_x_, margin_y_, margin_y_);
+  glUniform2fv(u.shape, FlamePose::kShapeRows + 1, pose.shape.data());
+  glUniform1f(u.base, pose.base);
+  glUniform1f(u.height, pose.height_factor);
+  glUniform1i(u.deform, pose.deform ? 1 : 0);
+  glUniform4f(u.sprite_rect, static_cast<float>(sprite_x_), static_cast<float>(sprite_y_),
+              static_cast<float>(sprite_w_), static_cast<float>(sprite_h_));
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, batch_->sprite_atlas());
+  glUniform1i(u.sprite, 0);
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glBindVertexArray(batch_->grid_vao());
+  glDrawElements(GL_TRIANGLES, batch_->grid_indices(), GL_UNSIGNED_SHORT, nullptr);
+  glBindVertexArray(0);
+  glDisable(GL_BLEND);
+  glDepthMask(GL_TRUE);
+  glActiveTexture(GL_TEXTURE0);
+}
+
+// ---------------------------------------------------------------------------
+
+std::shared_ptr<EigenBatch> EigenBatch::shared() {
+  // One batch for all flames alive at once (one scene, one GL context); a
+  // later scene gets a fresh one once the last flame of the old one is gone.
+  static std::weak_ptr<EigenBatch> current;
+  auto b = current.lock();
+  if (!b) {
+    b = std::make_shared<EigenBatch>();
+    current = b;
+  }
+  return b;
+}
+
+EigenBatch::EigenBatch() {
   glow_ = Program::from_library("fullscreen.vert", "eigenflame_glow.frag");
   ug_.source = glow_.uniform("u_source");
-  ug_.ramp = glow_.uniform("u_ramp");
-  ug_.colourise = glow_.uniform("u_colourise");
   ug_.map = glow_.uniform("u_map");
   ug_.step = glow_.uniform("u_step");
-  ug_.radius = glow_.uniform("u_radius");
-  ug_.sigma = glow_.uniform("u_sigma");
+  ug_.taps = glow_.uniform("u_taps");
+  ug_.offset = glow_.uniform("u_offset");
+  ug_.weight = glow_.uniform("u_weight");
+  ug_.clamp_rect = glow_.uniform("u_src_rect");
+  ug_.mask = glow_.uniform("u_mask");
   flame_ = Program::from_source(
       "eigenflame.vert",
       with_defines(shader("eigenflame.vert"),
                    "#define SHAPE_ROWS " + std::to_string(FlamePose::kShapeRows) + "\n"),
       "eigenflame.frag", shader("eigenflame.frag"));
   const auto u = [&](const char* n) { return flame_.uniform(n); };
-  uf_ = {u("u_view_projection"), u("u_origin"),       u("u_right"), u("u_size"),
-         u("u_margin"),          u("u_shape"),        u("u_base"),  u("u_height"),
-         u("u_deform"),          u("u_gray"),         u("u_glow"),  u("u_ramp"),
-         u("u_brightness"),      u("u_glow_strength")};
+  uf_ = {u("u_view_projection"), u("u_origin"), u("u_right"),      u("u_size"),
+         u("u_margin"),          u("u_shape"),  u("u_base"),       u("u_height"),
+         u("u_deform"),          u("u_sprite"), u("u_sprite_rect")};
+  sprite_program_ = Program::from_library("fullscreen.vert", "eigenflame_sprite.frag");
+  const auto v = [&](const char* n) { return sprite_program_.uniform(n); };
+  us_ = {v("u_gray"),   v("u_glow"),       v("u_ramp"),          v("u_gray_rect"), v("u_glow_rect"),
+         v("u_margin"), v("u_brightness"), v("u_glow_strength"), v("u_glow_tint")};
 
   // The billboard grid: kGridColumns x kShapeRows cells over the glow-padded area.
   std::vector<float> verts;
@@ -232,77 +322,123 @@ EigenRenderer::EigenRenderer(const ImageStack& mean, const ImageStack& eigen, St
   fullscreen_vao_ = make_vertex_array();
 }
 
-void EigenRenderer::prepare(std::span<const float> weights, int screen_w, int screen_h) {
-  const BoundFramebuffer caller;
-  recon_.reconstruct(weights);
-  if (look_.glow_strength > 0) {
-    glow_.use();
-    glUniform1i(ug_.radius, radius_);
-    glUniform1f(ug_.sigma, std::max(0.5f, radius_ * 0.5f));
-    glUniform1i(ug_.source, 0);
-    glUniform1i(ug_.ramp, 1);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, ramp_.get());
-    glBindVertexArray(fullscreen_vao_.get());
-    // Horizontal, from the gray image (flame uv; glow uv spans it plus the margins).
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_a_.get());
-    glViewport(0, 0, glow_w_, glow_h_);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, recon_.texture());
-    glUniform1i(ug_.colourise, 1);
-    glUniform4f(ug_.map, 1 + 2 * margin_x_, 1 + 2 * margin_y_, -margin_x_, -margin_y_);
-    glUniform2f(ug_.step, (1 + 2 * margin_x_) / glow_w_, 0.0f);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    // Vertical.
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_b_.get());
-    glBindTexture(GL_TEXTURE_2D, glow_a_.get());
-    glUniform1i(ug_.colourise, 0);
-    glUniform4f(ug_.map, 1, 1, 0, 0);
-    glUniform2f(ug_.step, 0.0f, 1.0f / glow_h_);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-  }
-  caller.restore(screen_w, screen_h);
+void EigenBatch::add(EigenRenderer* r) {
+  members_.push_back(r);
+  laid_out_ = false;
 }
 
-void EigenRenderer::composite(const Mat4& view, const Mat4& view_projection,
-                              const FlamePose& pose) {
-  Vec3 right{view.at(0, 0), 0.0f, view.at(0, 2)};
-  right = length(right) > 1e-6f ? normalize(right) : Vec3{1, 0, 0};
-  const float aspect = static_cast<float>(recon_.width()) / recon_.height();
-  flame_.use();
-  glUniformMatrix4fv(uf_.vp, 1, GL_FALSE, view_projection.m);
-  glUniform3f(uf_.origin, pose.origin.x, pose.origin.y, pose.origin.z);
-  glUniform3f(uf_.right, right.x, right.y, right.z);
-  glUniform2f(uf_.size, pose.height * aspect, pose.height);
-  const float mx = look_.glow_strength > 0 ? margin_x_ : 0,
-              my = look_.glow_strength > 0 ? margin_y_ : 0;
-  glUniform4f(uf_.margin, mx, mx, my, my);
-  glUniform2fv(uf_.shape, FlamePose::kShapeRows + 1, pose.shape.data());
-  glUniform1f(uf_.base, pose.base);
-  glUniform1f(uf_.height, pose.height_factor);
-  glUniform1i(uf_.deform, pose.deform ? 1 : 0);
+void EigenBatch::remove(EigenRenderer* r) {
+  members_.erase(std::remove(members_.begin(), members_.end(), r), members_.end());
+  laid_out_ = false;
+}
+
+void EigenBatch::layout() {
+  // Shelf packing, 2 texels apart so filtering never reads a neighbour.
+  constexpr int kGap = 2, kMaxRow = 2048;
+  auto pack = [&](auto size_of, auto place, int& atlas_w, int& atlas_h) {
+    int x = 0, y = 0, shelf = 0;
+    atlas_w = atlas_h = 1;
+    for (EigenRenderer* r : members_) {
+      const auto [w, h] = size_of(r);
+      if (x > 0 && x + w > kMaxRow) x = 0, y += shelf + kGap, shelf = 0;
+      place(r, x, y);
+      atlas_w = std::max(atlas_w, x + w);
+      atlas_h = std::max(atlas_h, y + h);
+      shelf = std::max(shelf, h);
+      x += w + kGap;
+    }
+  };
+  pack(
+      [](EigenRenderer* r) {
+        return std::pair{r->recon_.width(), r->recon_.height()};
+      },
+      [](EigenRenderer* r, int x, int y) { r->gray_x_ = x, r->gray_y_ = y; }, gray_w_, gray_h_);
+  pack(
+      [](EigenRenderer* r) {
+        return std::pair{r->glow_w_, r->glow_h_};
+      },
+      [](EigenRenderer* r, int x, int y) { r->glow_x_ = x, r->glow_y_ = y; }, glow_w_, glow_h_);
+  pack(
+      [](EigenRenderer* r) {
+        return std::pair{r->sprite_w_, r->sprite_h_};
+      },
+      [](EigenRenderer* r, int x, int y) { r->sprite_x_ = x, r->sprite_y_ = y; }, sprite_w_,
+      sprite_h_);
+  gray_ = make_target(gray_w_, gray_h_);
+  glow_a_ = make_target(glow_w_, glow_h_);
+  glow_b_ = make_target(glow_w_, glow_h_);
+  fbo_gray_ = make_fbo_for(gray_, "reconstruction atlas");
+  fbo_a_ = make_fbo_for(glow_a_, "glow atlas");
+  fbo_b_ = make_fbo_for(glow_b_, "glow atlas");
+  sprite_ = make_target(sprite_w_, sprite_h_);
+  fbo_sprite_ = make_fbo_for(sprite_, "sprite atlas");
+  laid_out_ = true;
+}
+
+void EigenBatch::prepare(uint64_t frame, int screen_w, int screen_h) {
+  if (frame == last_frame_ && laid_out_) return;  // done for this frame already
+  last_frame_ = frame;
+  const BoundFramebuffer caller;
+  if (!laid_out_) layout();
+  // 1. Every flame's reconstruction into the gray atlas.
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_gray_.get());
+  for (EigenRenderer* r : members_) r->recon_.draw_at(r->weights_, r->gray_x_, r->gray_y_);
+  // 2. Glow, horizontal then vertical, each flame in its own region.
+  glow_.use();
+  glUniform1i(ug_.source, 0);
+  glBindVertexArray(fullscreen_vao_.get());
+  for (int pass = 0; pass < 2; ++pass) {
+    glBindFramebuffer(GL_FRAMEBUFFER, pass == 0 ? fbo_a_.get() : fbo_b_.get());
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, pass == 0 ? gray_.get() : glow_a_.get());
+    glUniform1i(ug_.mask, pass == 0 ? 1 : 0);
+    for (EigenRenderer* r : members_) {
+      if (r->look_.glow_strength <= 0) continue;
+      glViewport(r->glow_x_, r->glow_y_, r->glow_w_, r->glow_h_);
+      glUniform1i(ug_.taps, r->taps_);
+      glUniform1fv(ug_.offset, r->taps_, r->tap_offset_.data());
+      glUniform1fv(ug_.weight, r->taps_, r->tap_weight_.data());
+      if (pass == 0) {  // from the gray image (flame uv), one glow texel per step
+        const float mx = r->margin_x_, my = r->margin_y_;
+        glUniform4f(ug_.map, 1 + 2 * mx, 1 + 2 * my, -mx, -my);
+        glUniform2f(ug_.step, (1 + 2 * mx) / r->glow_w_, 0.0f);
+        glUniform4f(ug_.clamp_rect, static_cast<float>(r->gray_x_), static_cast<float>(r->gray_y_),
+                    static_cast<float>(r->recon_.width()), static_cast<float>(r->recon_.height()));
+      } else {
+        glUniform4f(ug_.map, 1, 1, 0, 0);
+        glUniform2f(ug_.step, 0.0f, 1.0f / r->glow_h_);
+        glUniform4f(ug_.clamp_rect, static_cast<float>(r->glow_x_), static_cast<float>(r->glow_y_),
+                    static_cast<float>(r->glow_w_), static_cast<float>(r->glow_h_));
+      }
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+  }
+  // 3. Each flame's finished sprite: coloured flame + glow.
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_sprite_.get());
+  sprite_program_.use();
   glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, recon_.texture());
-  glUniform1i(uf_.gray, 0);
+  glBindTexture(GL_TEXTURE_2D, gray_.get());
+  glUniform1i(us_.gray, 0);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, glow_b_.get());
-  glUniform1i(uf_.glow, 1);
+  glUniform1i(us_.glow, 1);
+  glUniform1i(us_.ramp, 2);
   glActiveTexture(GL_TEXTURE2);
-  glBindTexture(GL_TEXTURE_2D, ramp_.get());
-  glUniform1i(uf_.ramp, 2);
-  glUniform1f(uf_.brightness, look_.brightness);
-  glUniform1f(uf_.glow_strength, look_.glow_strength);
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_BLEND);
-  glBlendEquation(GL_FUNC_ADD);
-  glBlendFunc(GL_ONE, GL_ONE);
-  glBindVertexArray(grid_vao_.get());
-  glDrawElements(GL_TRIANGLES, grid_indices_, GL_UNSIGNED_SHORT, nullptr);
-  glBindVertexArray(0);
-  glDisable(GL_BLEND);
-  glDepthMask(GL_TRUE);
+  for (EigenRenderer* r : members_) {
+    glViewport(r->sprite_x_, r->sprite_y_, r->sprite_w_, r->sprite_h_);
+    glBindTexture(GL_TEXTURE_2D, r->ramp_.get());
+    glUniform4f(us_.gray_rect, static_cast<float>(r->gray_x_), static_cast<float>(r->gray_y_),
+                static_cast<float>(r->recon_.width()), static_cast<float>(r->recon_.height()));
+    glUniform4f(us_.glow_rect, static_cast<float>(r->glow_x_), static_cast<float>(r->glow_y_),
+                static_cast<float>(r->glow_w_), static_cast<float>(r->glow_h_));
+    glUniform2f(us_.margin, r->margin_x_, r->margin_y_);
+    glUniform1f(us_.brightness, r->look_.brightness);
+    glUniform1f(us_.glow_strength, r->look_.glow_strength);
+    glUniform3f(us_.glow_tint, r->glow_tint_.x, r->glow_tint_.y, r->glow_tint_.z);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
   glActiveTexture(GL_TEXTURE0);
+  caller.restore(screen_w, screen_h);
 }
 
 std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation) {

@@ -145,8 +145,10 @@ class EigenFlame final : public Element {
       std::copy(st.begin(), st.end(), prev_.begin());
       const auto s1 = arp_->step();
       std::copy(s1.begin(), s1.end(), next_.begin());
-      renderer_ = std::make_unique<EigenRenderer>(stack_of(L.mean), stack_of(L.eigen), s.layout,
-                                                  L.ne, look);
+      shown_ = prev_;
+      renderer_ = std::make_unique<EigenRenderer>(
+          stack_of(L.mean), stack_of(L.eigen), s.layout, L.ne, look,
+          std::span<const float>(shown_.data() + L.np + L.nw + 1, static_cast<size_t>(L.ne)));
     } else {
       if (s.driver == EigenDriver::kArp)
         LOG_WARN("eigenflame: %s has no Learning Flames part; playing its motion graph instead",
@@ -155,8 +157,8 @@ class EigenFlame final : public Element {
       GraphWalker walker(g, m.weights, m.components(), model_->lean, s.walk, seed);
       player_ = std::make_unique<GraphPlayer>(std::move(walker), m.weights, m.components(),
                                               Fixed::from_ratio(1, 2));
-      renderer_ =
-          std::make_unique<EigenRenderer>(stack_of(m.mean), stack_of(m.eigen), s.layout, e, look);
+      renderer_ = std::make_unique<EigenRenderer>(stack_of(m.mean), stack_of(m.eigen), s.layout, e,
+                                                  look, player_->weights());
     }
     if (s.embers.enabled) {
       embers_ = Program::from_library("eigenflame_embers.vert", "eigenflame_embers.frag");
@@ -192,28 +194,26 @@ class EigenFlame final : public Element {
         const auto st = arp_->step();
         std::copy(st.begin(), st.end(), next_.begin());
       }
+      // The state shown between two model frames (display only: float is fine).
+      const float t = phase_.to_float();
+      for (int i = 0; i < shape_->dim(); ++i) shown_[i] = prev_[i] + (next_[i] - prev_[i]) * t;
     }
   }
 
   void draw(const FrameContext& f, DrawPass pass) override {
     if (pass == DrawPass::kBackground) {
-      if (player_) {
-        renderer_->prepare(player_->weights(), f.width, f.height);
-      } else {
-        const float t = phase_.to_float();
-        const int d = shape_->dim();
-        for (int i = 0; i < d; ++i) shown_[i] = prev_[i] + (next_[i] - prev_[i]) * t;
-        const auto& L = model_->model->flames;
-        renderer_->prepare({shown_.data() + L.np + L.nw + 1, static_cast<size_t>(L.ne)}, f.width,
-                           f.height);
-      }
-      if (embers_.id()) draw_embers(f);
+      renderer_->prepare(f.frame, f.width, f.height);
       return;
     }
+    // Embers go after every element's offscreen work (kBackground), so the
+    // screen's framebuffer is left and re-entered once per frame, not once per
+    // flame (on tilers and llvmpipe each re-entry stores and reloads it).
+    if (pass == DrawPass::kBody && embers_.id()) draw_embers(f);
     if (pass != DrawPass::kFlame) return;
     FlamePose pose;
     pose.origin = position_;
     pose.height = s_.height;
+    pose.widen = s_.widen;
     if (shape_) {
       pose.deform = true;
       shape_->pose({shown_.data(), static_cast<size_t>(shape_->dim())},
@@ -285,6 +285,7 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
   EigenFlameSettings& s = spec->settings;
   const std::string model_name = r.string("model", "");
   s.height = static_cast<float>(r.number("height", s.height, 0.001, 100));
+  s.widen = static_cast<float>(r.number("widen", s.widen, 0.1, 10));
   s.driver = r.string("driver", "graph", {"graph", "arp"}) == "arp" ? EigenDriver::kArp
                                                                     : EigenDriver::kGraph;
   s.components =

@@ -7,6 +7,7 @@
 //   model = "flames.cmodel"    # relative to the scene; default: the built-in model
 //   position = [0, 0, 0]       # bottom centre of the flame image, world metres
 //   height = 0.5               # world height of the flame image
+//   widen = 1.0                # graph driver: stretch the image sideways (a broader fire)
 //   driver = "graph"           # graph (EigenFires walk) | arp (Learning Flames)
 //   seed = 7                   # optional; default from the scene's seed
 //   components = 0             # use the first N components (0: all the model has)
@@ -65,6 +66,7 @@ struct EigenEmbers {
 
 struct EigenFlameSettings {
   float height = 0.5f;
+  float widen = 1.0f;  // graph driver: stretches the image sideways
   EigenDriver driver = EigenDriver::kGraph;
   int components = 0;
   StackLayout layout = StackLayout::kPacked;
