@@ -151,6 +151,8 @@ FlameModel FlameModel::from(ModelFile file) {
     L.width = get_int(f, lf, p, "width", 1, 16384);
     L.height = get_int(f, lf, p, "height", 1, 16384);
     L.frames = get_int(f, lf, p, "frames", 1, 1 << 24);
+    L.base_y = static_cast<float>(get_num(f, lf, p, "base_y", -1e6, 1e6));
+    L.span = static_cast<float>(get_num(f, lf, p, "span", 0.1, 100));
     L.dim = L.np + L.nw + 1 + L.ne;
     L.mean = quantised(f, "lf.mean", 1, L.width, L.height);
     L.eigen = quantised(f, "lf.eigen", L.ne, L.width, L.height);

@@ -11,6 +11,8 @@
 // Optional Learning Flames part (info "learning_flames"; D = np + nw + 1 + ne):
 //   lf.mean.q [1,h,w], lf.eigen.q [ne,h,w] (+ scale/offset)  shape-normalised appearance
 //   lf.params F32 [T,D]   training parameters: path[np], width[nw], height, appearance[ne]
+//                         (path: centre x in pixels at heights (i+0.5)/np of the flame, base to
+//                         tip; width: 2 x the slice's x std; height: base to tip, pixels)
 //   arp.A F32 [K,D,D], arp.d F32 [D], arp.B F32 [D,D]   x_t = sum A_k x_{t-k} + d + B w_t
 #pragma once
 
@@ -74,6 +76,8 @@ struct LearningFlamesModel {
   int dim = 26;                    // np + nw + 1 + ne
   int order = 2;                   // K
   int width = 0, height = 0;       // normalised image size
+  float base_y = 0;                // flame base row in the model frame (pixels)
+  float span = 2.5f;               // the normalised image covers +-span widths around the path
   QuantisedImages mean, eigen;     // appearance of the normalised flame
   std::span<const float> params;   // T x dim
   int frames = 0;                  // T

@@ -41,6 +41,19 @@ int run_build(int argc, char** argv) {
   app.add_option("--saturation", opt.colour.saturation, "default colour: saturation")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  bool no_flames = false;
+  app.add_flag("--no-learning-flames", no_flames,
+               "EigenFires and motion graph only (no shape model, no ARP)");
+  app.add_option("--np", opt.flames.shape.np, "Learning Flames: path samples")
+      ->capture_default_str();
+  app.add_option("--nw", opt.flames.shape.nw, "Learning Flames: width samples")
+      ->capture_default_str();
+  app.add_option("--ne", opt.flames.ne, "Learning Flames: eigenflames")->capture_default_str();
+  app.add_option("--particles", opt.flames.arp.particles, "ARP learning: condensation particles Nc")
+      ->capture_default_str();
+  app.add_option("--order", opt.flames.arp.order, "ARP order K")
+      ->check(CLI::Range(1, 4))
+      ->capture_default_str();
   app.add_option("--report", report, "folder for the reports (default: MODEL.report)");
   try {
     app.parse(argc, argv);
@@ -49,6 +62,7 @@ int run_build(int argc, char** argv) {
   }
   try {
     auto d = candela::tools::load_dataset(dataset);
+    opt.learning_flames = !no_flames;
     opt.eigen_dtype = bits == 8 ? candela::model::DType::kU8 : candela::model::DType::kU16;
     opt.progress = [](const std::string& s) { std::fprintf(stderr, "build: %s\n", s.c_str()); };
     opt.provenance_options = {{"dataset", dataset},
@@ -59,7 +73,13 @@ int run_build(int argc, char** argv) {
                               {"bits", bits},
                               {"theta_min", opt.graph.theta_min},
                               {"successors", opt.graph.max_successors},
-                              {"min_jump", opt.graph.min_jump}};
+                              {"min_jump", opt.graph.min_jump},
+                              {"learning_flames", !no_flames},
+                              {"np", opt.flames.shape.np},
+                              {"nw", opt.flames.shape.nw},
+                              {"ne", opt.flames.ne},
+                              {"particles", opt.flames.arp.particles},
+                              {"order", opt.flames.arp.order}};
     auto m = candela::tools::build_model(d, opt);
     m.writer.write(out);
     if (report.empty()) report = out + ".report";
@@ -70,6 +90,13 @@ int run_build(int argc, char** argv) {
     std::printf("   E   train dB  held-out dB\n");
     for (const auto& r : m.psnr)
       std::printf("%4d   %7.2f   %7.2f\n", r.components, r.train_db, r.holdout_db);
+    if (m.has_flames)
+      std::printf(
+          "Learning Flames: %zu single-plume frames, ARP after %d EM iterations; held-out PSNR at "
+          "%d "
+          "parameters/frame: EigenFires %.2f dB, Learning Flames %.2f dB\n",
+          m.flames.frames.size(), m.flames.dynamics.iterations, m.equal_params, m.plain_equal_db,
+          m.flames_equal_db);
     std::printf("motion graph: %zu edges, theta_min %.1f; reports in %s\n",
                 m.graph.successors.size(), m.graph.theta_min, report.c_str());
     return 0;

@@ -12,6 +12,38 @@ namespace candela::tools {
 
 std::string tool_version() { return std::string("candela-tool ") + CANDELA_VERSION; }
 
+namespace {
+
+// Held-out single-plume frames rebuilt by both models with the same number of
+// numbers per frame: E = np + nw + 1 + ne EigenFires versus the flame model.
+void compare_equal_parameters(const Dataset& d, BuiltModel& m) {
+  const LearningFlamesModel& lf = m.flames;
+  m.equal_params = lf.dim();
+  const int e = std::min(m.equal_params, m.pca.components());
+  std::vector<int> pos(d.frames(), -1);
+  for (size_t i = 0; i < lf.frames.size(); ++i) pos[lf.frames[i]] = static_cast<int>(i);
+  double plain = 0, flames = 0;
+  int n = 0;
+  std::vector<float> out(d.frame_pixels());
+  for (int f : m.holdout) {
+    if (pos[f] < 0) continue;
+    plain += m.pca.mse(f, e);
+    lf.render(lf.params.row(pos[f]).transpose(), d.width, d.height, out.data());
+    double s = 0;
+    for (size_t p = 0; p < out.size(); ++p) {
+      const double diff = std::clamp(out[p], 0.0f, 255.0f) - d.frame(f)[p];
+      s += diff * diff;
+    }
+    flames += s / static_cast<double>(out.size());
+    ++n;
+  }
+  if (n == 0) return;
+  m.plain_equal_db = psnr_from_mse(plain / n);
+  m.flames_equal_db = psnr_from_mse(flames / n);
+}
+
+}  // namespace
+
 BuiltModel build_model(const Dataset& d, const BuildOptions& opt) {
   BuiltModel m;
   PcaOptions po = opt.pca;
@@ -33,6 +65,19 @@ BuiltModel build_model(const Dataset& d, const BuildOptions& opt) {
   m.graph = build_motion_graph(space, opt.graph);
 
   const int w = d.width, h = d.height, frames = d.frames();
+  int single = 0;
+  for (int f = 0; f < frames; ++f) single += !d.multi_plume[f];
+  if (opt.learning_flames && single >= 16) {
+    LearningFlamesOptions lo = opt.flames;
+    lo.holdout = m.holdout;
+    lo.progress = opt.progress;
+    m.flames = learn_flames(d, lo);
+    m.has_flames = true;
+    compare_equal_parameters(d, m);
+  } else if (opt.learning_flames && opt.progress) {
+    opt.progress("Learning Flames skipped: only " + std::to_string(single) +
+                 " single-plume frames");
+  }
   const size_t px = d.frame_pixels();
   model::ModelWriter& mw = m.writer;
   nlohmann::json sources = nlohmann::json::array();
@@ -91,6 +136,53 @@ BuiltModel build_model(const Dataset& d, const BuildOptions& opt) {
   mw.add_i32("graph.successors", {static_cast<int64_t>(m.graph.successors.size())},
              m.graph.successors);
   mw.add_f32("graph.cost", {static_cast<int64_t>(m.graph.cost.size())}, m.graph.cost);
+  if (m.has_flames) {
+    const LearningFlamesModel& lf = m.flames;
+    const ShapeOptions& so = lf.shape;
+    const int dim = lf.dim(), K = lf.dynamics.arp.order, T = static_cast<int>(lf.frames.size());
+    const int ne = std::min(lf.ne, lf.appearance.components());
+    const size_t npx = static_cast<size_t>(so.norm_width) * so.norm_height;
+    info["learning_flames"] = {{"np", so.np},
+                               {"nw", so.nw},
+                               {"ne", lf.ne},
+                               {"order", K},
+                               {"width", so.norm_width},
+                               {"height", so.norm_height},
+                               {"frames", T},
+                               {"base_y", so.base_row},
+                               {"span", so.span},
+                               {"arp_iterations", lf.dynamics.iterations},
+                               {"arp_log_likelihood", lf.dynamics.log_likelihood},
+                               {"holdout_psnr_equal_parameters",
+                                {{"parameters", m.equal_params},
+                                 {"eigenfires_db", m.plain_equal_db},
+                                 {"learning_flames_db", m.flames_equal_db}}}};
+    mw.set_info(info);
+    model::add_quantised(
+        mw, "lf.mean",
+        model::quantise_images(lf.appearance.mean.data(), 1, npx, model::DType::kU16), 1,
+        so.norm_width, so.norm_height);
+    Eigen::MatrixXf eig = Eigen::MatrixXf::Zero(static_cast<Eigen::Index>(npx), lf.ne);
+    eig.leftCols(ne) = lf.appearance.basis.leftCols(ne);
+    model::add_quantised(mw, "lf.eigen",
+                         model::quantise_images(eig.data(), lf.ne, npx, model::DType::kU16), lf.ne,
+                         so.norm_width, so.norm_height);
+    Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> pr =
+        lf.params.cast<float>();
+    mw.add_f32("lf.params", {T, dim}, {pr.data(), static_cast<size_t>(pr.size())});
+    std::vector<float> A;
+    for (int k = 0; k < K; ++k) {
+      Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> ak =
+          lf.dynamics.arp.A[k].cast<float>();
+      A.insert(A.end(), ak.data(), ak.data() + ak.size());
+    }
+    mw.add_f32("arp.A", {K, dim, dim}, A);
+    std::vector<float> dv(lf.dynamics.arp.d.data(), lf.dynamics.arp.d.data() + dim);
+    mw.add_f32("arp.d", {dim}, dv);
+    Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> b =
+        lf.dynamics.arp.B.cast<float>();
+    mw.add_f32("arp.B", {dim, dim}, {b.data(), static_cast<size_t>(b.size())});
+  }
   return m;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dataset.h"
+#include "learning_flames.h"
 #include "model/model_writer.h"
 #include "pca.h"
 #include "transitions.h"
@@ -18,7 +19,8 @@ struct BuildOptions {
   model::DType eigen_dtype = model::DType::kU16;
   MotionGraphOptions graph;
   model::ColourDefaults colour;
-  bool learning_flames = false;
+  bool learning_flames = true;
+  LearningFlamesOptions flames;
   nlohmann::json provenance_options = nlohmann::json::object();
   std::function<void(const std::string&)> progress;
 };
@@ -34,6 +36,12 @@ struct BuiltModel {
   std::vector<int> holdout;
   std::vector<PsnrRow> psnr;  // reconstruction PSNR versus E
   model::ModelWriter writer;
+  bool has_flames = false;
+  LearningFlamesModel flames;
+  // Held-out PSNR at an equal number of parameters per frame (np + nw + 1 + ne):
+  // plain EigenFires versus the shape-normalised Learning Flames model.
+  double plain_equal_db = 0, flames_equal_db = 0;
+  int equal_params = 0;
 };
 
 BuiltModel build_model(const Dataset& d, const BuildOptions& opt);

@@ -13,6 +13,7 @@ WeightSpace WeightSpace::from(const Eigen::MatrixXf& weights,
   const int e = components > 0 ? std::min<int>(components, static_cast<int>(weights.cols()))
                                : static_cast<int>(weights.cols());
   s.w = weights.leftCols(e);
+  s.cols = s.w.transpose();
   s.clip_of.assign(weights.rows(), 0);
   for (size_t c = 0; c < clips.size(); ++c) {
     s.clip_first.push_back(clips[c].first);
@@ -79,15 +80,15 @@ Transition direct_bridging(const WeightSpace& s, int alpha, int beta, const Tran
   Transition t;
   std::vector<uint8_t> used = initial_rejections(s, alpha, beta, o.reject_tail);
   t.path.push_back(alpha);
-  const Eigen::RowVectorXf a = s.w.row(alpha), b = s.w.row(beta);
+  const Eigen::VectorXf a = s.cols.col(alpha), b = s.cols.col(beta);
   for (int i = 1; i <= o.steps; ++i) {
-    const Eigen::RowVectorXf target =
+    const Eigen::VectorXf target =
         a + (b - a) * (static_cast<float>(i) / static_cast<float>(o.steps + 1));
     int best = -1;
     float best_d = 0;
     for (int f = 0; f < s.frames(); ++f) {
       if (used[f] || s.distance(t.path.back(), f) < o.theta_min) continue;
-      const float d = (s.w.row(f) - target).squaredNorm();
+      const float d = (s.cols.col(f) - target).squaredNorm();
       if (best < 0 || d < best_d) {
         best = f;
         best_d = d;
@@ -131,18 +132,29 @@ Transition end_growing(const WeightSpace& s, int alpha, int beta, const Transiti
     sb.clear();
     for (int f = 0; f < s.frames(); ++f) {
       if (used[f]) continue;
-      da[f] = s.distance(a, f);
-      db[f] = s.distance(b, f);
+      da[f] = (s.cols.col(a) - s.cols.col(f)).norm();
+      db[f] = (s.cols.col(b) - s.cols.col(f)).norm();
       if (da[f] >= theta && da[f] < D) sa.push_back(f);
       if (db[f] >= theta && db[f] < D) sb.push_back(f);
     }
-    std::sort(sa.begin(), sa.end(), [&](int x, int y) { return da[x] < da[y]; });
-    std::sort(sb.begin(), sb.end(), [&](int x, int y) { return db[x] < db[y]; });
+    // Sorted lazily: the walk below rarely goes past the first few dozen.
+    size_t sorted_a = 0, sorted_b = 0;
+    auto by_a = [&](int x, int y) { return da[x] < da[y]; };
+    auto by_b = [&](int x, int y) { return db[x] < db[y]; };
+    auto extend = [](std::vector<int>& v, size_t& sorted, size_t need, auto cmp) {
+      if (need < sorted) return;
+      const size_t upto = std::min(v.size(), std::max<size_t>(32, 2 * need + 1));
+      std::partial_sort(v.begin() + static_cast<ptrdiff_t>(sorted),
+                        v.begin() + static_cast<ptrdiff_t>(upto), v.end(), cmp);
+      sorted = upto;
+    };
     // Table 1: walk both sorted lists; a frame near both ends joins them.
     std::unordered_set<int> seen_a, seen_b;
     size_t j = 0, k = 0;
     bool found_step = false;
     while (j < sa.size() && k < sb.size() && !found_step) {
+      extend(sa, sorted_a, j, by_a);
+      extend(sb, sorted_b, k, by_b);
       const int aj = sa[j], bk = sb[k];
       seen_a.insert(aj);
       seen_b.insert(bk);

@@ -16,7 +16,8 @@ struct WeightSpace {
   Eigen::MatrixXf w;         // frames x E
   std::vector<int> clip_of;  // frame -> clip index (for "frames before alpha / after beta")
   std::vector<int> clip_first, clip_end;
-  float distance(int a, int b) const { return (w.row(a) - w.row(b)).norm(); }
+  Eigen::MatrixXf cols;  // E x frames: the same, one contiguous column per frame
+  float distance(int a, int b) const { return (cols.col(a) - cols.col(b)).norm(); }
   int frames() const { return static_cast<int>(w.rows()); }
   static WeightSpace from(const Eigen::MatrixXf& weights, const std::vector<model::ClipInfo>& clips,
                           int components = 0);
