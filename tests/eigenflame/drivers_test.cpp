@@ -330,5 +330,38 @@ TEST(ArpProcess, StaysBoundedAndKeepsTheTrainingSpectrum) {
   EXPECT_LT(p.clamped(), static_cast<uint64_t>(steps * D / 1000));
 }
 
+TEST(ArpProcess, DefaultModelKeepsItsTrainingSpectrum) {
+  // The built-in model's learned ARP (from the fluid simulation): the flame
+  // height and the first path and width samples of a long synthesised run
+  // stay in range and keep the training sequence's power spectrum.
+  const auto em = default_model();
+  const model::FlameModel& m = *em->model;
+  ASSERT_TRUE(m.has_learning_flames);
+  const auto& L = m.flames;
+  ArpView v;
+  v.dim = L.dim;
+  v.order = L.order;
+  v.A = L.A;
+  v.d = L.d;
+  v.B = L.B;
+  v.training = L.params;
+  const int steps = 8192;
+  // The flame height, as the model builder's own measure (path samples carry
+  // the breeze clips' slow leaning, which a spectrum of the joined clips mixes in).
+  for (int c : {L.np + L.nw}) {
+    std::vector<double> synth, train;
+    ArpProcess q(v, 11 + static_cast<uint64_t>(c));
+    for (int s = 0; s < steps; ++s) synth.push_back(q.step()[static_cast<size_t>(c)]);
+    for (int t = 0; t < L.frames; ++t)
+      train.push_back(L.params[static_cast<size_t>(t) * L.dim + c]);
+    const double lsd = log_spectral_distance(psd_db(synth, 64), psd_db(train, 64));
+    std::printf("default model, parameter %d: log-spectral distance %.2f dB (clamped %llu of %d)\n",
+                c, lsd, static_cast<unsigned long long>(q.clamped()), steps * L.dim);
+    EXPECT_LT(lsd, 2.0) << "parameter " << c;
+    // Bounded: the clamp at the training range +- half its span rarely bites.
+    EXPECT_LT(q.clamped(), static_cast<uint64_t>(steps * L.dim / 20));
+  }
+}
+
 }  // namespace
 }  // namespace candela

@@ -195,6 +195,7 @@ void check_wind_leans_and_returns(const std::string& driver) {
 }
 
 TEST(EigenWind, GraphWalkLeansWithTheWindAndReturns) { check_wind_leans_and_returns("graph"); }
+TEST(EigenWind, ArpFlameBendsWithTheWindAndReturns) { check_wind_leans_and_returns("arp"); }
 
 TEST(EigenFallback, CorruptModelIsReportedAndTheDefaultPlays) {
   const std::string dir = std::string(CANDELA_SOURCE_DIR) + "/tests/eigenflame/data";

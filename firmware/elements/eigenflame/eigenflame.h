@@ -20,7 +20,7 @@
 //   glow_radius = 0.12         # fraction of the flame height (default: the model's)
 //   glow_strength = 0.6
 //   [element.graph]  max_stretch = 45  window = 1800  jump_chance = 0.08  steer_chance = 0.17
-//   [element.wind]   lean = 0.05  max_lean = 0.2  response = 2.0  bend = 0.08
+//   [element.wind]   lean = 0.05  max_lean = 0.2  response = 2.0  bend = 0.15
 //   [element.embers] width = 0.6  depth = 0.25  colour = "#ff5010"  # a glowing bed under it
 //
 // A model that cannot be loaded is reported (file, key, what is wrong) when
@@ -77,10 +77,10 @@ struct EigenFlameSettings {
   float brightness = 1.0f;
   float glow_radius = 0.12f, glow_strength = 0.6f;
   WalkSettings walk;
-  Fixed wind_lean = Fixed::from_ratio(5, 100);  // target lean per m/s, image widths
-  Fixed max_lean = Fixed::from_ratio(20, 100);  // image widths
-  Fixed lean_response = Fixed::from_int(2);     // 1/s
-  Fixed wind_bend = Fixed::from_ratio(8, 100);  // arp: path offset at the tip per m/s, heights
+  Fixed wind_lean = Fixed::from_ratio(5, 100);   // target lean per m/s, image widths
+  Fixed max_lean = Fixed::from_ratio(20, 100);   // image widths
+  Fixed lean_response = Fixed::from_int(2);      // 1/s
+  Fixed wind_bend = Fixed::from_ratio(15, 100);  // arp: path offset at the tip per m/s, heights
   EigenEmbers embers;
 };
 

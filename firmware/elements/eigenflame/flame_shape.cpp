@@ -76,7 +76,7 @@ void FlameShapeModel::pose(std::span<const float> x, float bend, FlamePose& pose
   const float height = std::max(4.0f, x[static_cast<size_t>(np_ + nw_)]);
   for (int i = 0; i < np; ++i) {
     const float h = (i + 0.5f) / np;
-    path[i] = x[static_cast<size_t>(i)] + bend * h * h * frame_h_;
+    path[i] = x[static_cast<size_t>(i)] + bend * h * frame_h_;
   }
   for (int i = 0; i < nw; ++i) width[i] = x[static_cast<size_t>(np_ + i)];
   SampledSpline p, w;

@@ -39,7 +39,7 @@ class FlameShapeModel {
   int np() const { return np_; }
   int nw() const { return nw_; }
   // Fills pose.shape / base / height_factor from state x. `bend`: extra path
-  // offset at the tip in flame-image heights (wind), growing with height squared.
+  // offset at the tip in flame-image heights (wind), growing linearly with height.
   void pose(std::span<const float> x, float bend, FlamePose& pose) const;
 
   int np_ = 10, nw_ = 10, ne_ = 5;
