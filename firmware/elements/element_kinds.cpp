@@ -1,5 +1,6 @@
 // Every kind of scene element the runtime knows. Add a kind here.
 #include "elements/candle/candles.h"
+#include "elements/eigenflame/eigenflame.h"
 #include "elements/perlinfire/perlinfire.h"
 #include "elements/test_pattern/test_pattern.h"
 #include "scene/element.h"
@@ -11,6 +12,7 @@ std::span<const ElementKind> element_kinds() {
       test_pattern_kind(),
       candles_kind(),
       perlinfire_kind(),
+      eigenflame_kind(),
   };
   return kKinds;
 }

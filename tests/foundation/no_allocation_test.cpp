@@ -28,7 +28,7 @@ namespace {
 
 // The scenes whose frame loop must be allocation-free. Later element kinds
 // add their scenes here.
-const char* const kScenes[] = {"test-pattern", "default"};
+const char* const kScenes[] = {"test-pattern", "default", "eigen-fireplace", "eigen-candle"};
 
 TEST(FrameLoop, NoHeapAllocationPerFrame) {
 #if defined(__SANITIZE_ADDRESS__)

@@ -1,0 +1,174 @@
+// Draws one eigen-flame with GLES 3.0:
+//  1. reconstruction: mean + sum w_i eigen_i at the model's own resolution
+//     into an offscreen RGBA8 texture (gray in red, 0..255 -> 0..1);
+//  2. glow: a cheap bloom at half size, coloured and blurred separably;
+//  3. sprite: colour (ramp) + brightness + glow at the model's resolution;
+//  4. composite: a camera-facing billboard (a vertex grid that the Learning
+//     Flames shape can deform) adds the sprite onto the scene.
+// Weights go to the GPU as a vec4 uniform array; nothing is allocated per frame.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "gl/math.h"
+#include "gl/program.h"
+#include "gl/texture.h"
+
+namespace candela {
+
+// A stack of quantised images: value = offset[i] + scale[i] * raw, raw is U8
+// or little-endian U16; rows top first. (A view of model::QuantisedImages.)
+struct ImageStack {
+  bool u16 = false;
+  int count = 0, width = 0, height = 0;
+  const uint8_t* data = nullptr;
+  std::span<const float> scale, offset;
+};
+
+// How the stack is laid out on the GPU: four components per RGBA texel
+// (packed) or one per layer of a texture array (layered).
+enum class StackLayout { kPacked, kLayered };
+
+// Step 1 alone (also what the tests compare with the CPU reconstruction).
+class EigenReconstructor {
+ public:
+  static constexpr int kMaxComponents = 256;
+
+  // Uploads mean and the first min(eigen.count, max_components) eigen-images.
+  EigenReconstructor(const ImageStack& mean, const ImageStack& eigen, StackLayout layout,
+                     int max_components = kMaxComponents);
+  // Renders into texture(); leaves that framebuffer bound and its viewport set.
+  void reconstruct(std::span<const float> weights);
+  // Renders into the bound framebuffer at (x, y), model-sized.
+  void draw_at(std::span<const float> weights, int x, int y);
+  GLuint texture() const { return target_.get(); }
+  GLuint framebuffer() const { return fbo_.get(); }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int components() const { return components_; }
+
+ private:
+  int width_, height_, components_, entries_, layers_;
+  StackLayout layout_;
+  Program program_;
+  Texture stack_, target_;
+  Framebuffer fbo_;
+  VertexArray vao_;
+  GLint u_stack_, u_layers_, u_coef_, u_bias_, u_origin_;
+  std::array<float, 4 * (kMaxComponents / 4 + 2)> coef_{};
+  float mean_scale_, mean_offset_;
+  std::span<const float> eigen_scale_, eigen_offset_;
+};
+
+struct FlameLookSettings {
+  std::array<uint8_t, 256 * 4> ramp{};  // gray -> RGBA colour
+  float brightness = 1.0f;
+  float glow_radius = 0.12f;  // fraction of the flame image's height
+  float glow_strength = 0.6f;
+};
+
+// The flame's pose and shape for one frame.
+struct FlamePose {
+  Vec3 origin;          // bottom centre of the flame image, world
+  float height = 0.5f;  // world height of the flame image
+  float widen = 1.0f;   // rigid: width scale of the image
+  bool deform = false;  // apply `shape` (Learning Flames)
+  static constexpr int kShapeRows = 24;
+  // Per grid row (flame base to tip): centre offset and full width of the
+  // normalised image, both in flame-image heights.
+  std::array<float, 2 * (kShapeRows + 1)> shape{};
+  float base = 0;              // flame base above the image's bottom edge, heights
+  float height_factor = 1.0f;  // flame base-to-tip length, heights
+};
+
+class EigenBatch;
+
+// One flame's GPU side. Its offscreen work (reconstruction, glow, the
+// finished sprite) is done by an EigenBatch together with every other
+// eigen-flame's, in shared atlas textures: four render-target switches per
+// frame however many flames (each makes llvmpipe and tiled GPUs flush). The
+// billboard then costs one bilinear fetch per screen pixel.
+class EigenRenderer {
+ public:
+  // `weights` must stay valid (the element's own array); read at prepare().
+  EigenRenderer(const ImageStack& mean, const ImageStack& eigen, StackLayout layout,
+                int max_components, const FlameLookSettings& look, std::span<const float> weights);
+  ~EigenRenderer();
+  EigenRenderer(const EigenRenderer&) = delete;
+  EigenRenderer& operator=(const EigenRenderer&) = delete;
+
+  // Offscreen work of all flames (done by the first caller in a frame); call
+  // in the first drawing pass. Restores the caller's framebuffer and viewport.
+  void prepare(uint64_t frame, int screen_w, int screen_h);
+  // Adds the flame and its glow onto the bound framebuffer.
+  void composite(const Mat4& view, const Mat4& view_projection, const FlamePose& pose);
+  const EigenReconstructor& reconstructor() const { return recon_; }
+
+ private:
+  friend class EigenBatch;
+  EigenReconstructor recon_;
+  FlameLookSettings look_;
+  std::span<const float> weights_;
+  std::shared_ptr<EigenBatch> batch_;
+  Texture ramp_;
+  int glow_w_ = 0, glow_h_ = 0, radius_ = 0;
+  int sprite_w_ = 0, sprite_h_ = 0;
+  static constexpr int kMaxTaps = 17;  // eigenflame_glow.frag's MAX_TAPS
+  int taps_ = 1;                       // centre + bilinear pairs
+  std::array<float, kMaxTaps> tap_offset_{}, tap_weight_{};
+  Vec3 glow_tint_;
+  float margin_x_ = 0, margin_y_ = 0;  // glow margin, flame uv
+  // Places in the atlases.
+  int gray_x_ = 0, gray_y_ = 0, glow_x_ = 0, glow_y_ = 0, sprite_x_ = 0, sprite_y_ = 0;
+};
+
+// The shared offscreen stage of every live eigen-flame.
+class EigenBatch {
+ public:
+  static std::shared_ptr<EigenBatch> shared();
+  void add(EigenRenderer* r);
+  void remove(EigenRenderer* r);
+  void prepare(uint64_t frame, int screen_w, int screen_h);
+  GLuint sprite_atlas() const { return sprite_.get(); }
+  const Program& flame_program() const { return flame_; }
+  GLuint grid_vao() const { return grid_vao_.get(); }
+  GLsizei grid_indices() const { return grid_indices_; }
+  struct FlameUniforms {
+    GLint vp, origin, right, size, margin, shape, base, height, deform, sprite, sprite_rect;
+  };
+  const FlameUniforms& flame_uniforms() const { return uf_; }
+
+  EigenBatch();
+
+ private:
+  void layout();
+  std::vector<EigenRenderer*> members_;
+  bool laid_out_ = false;
+  uint64_t last_frame_ = ~uint64_t{0};
+  int gray_w_ = 0, gray_h_ = 0, glow_w_ = 0, glow_h_ = 0, sprite_w_ = 0, sprite_h_ = 0;
+  Texture gray_, glow_a_, glow_b_, sprite_;
+  Framebuffer fbo_gray_, fbo_a_, fbo_b_, fbo_sprite_;
+  Program glow_, sprite_program_, flame_;
+  VertexArray fullscreen_vao_, grid_vao_;
+  Buffer grid_vbo_, grid_ibo_;
+  GLsizei grid_indices_ = 0;
+  struct {
+    GLint source, map, step, taps, offset, weight, clamp_rect, mask;
+  } ug_{};
+  struct {
+    GLint gray, glow, ramp, gray_rect, glow_rect, margin, brightness, glow_strength, glow_tint;
+  } us_{};
+  FlameUniforms uf_{};
+};
+
+// The HLS colour ramp (gray as lightness, fixed hue and saturation), as the
+// EigenFires paper colours its flames.
+std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation);
+// A transfer function through evenly spaced colour stops (at least two).
+std::array<uint8_t, 256 * 4> transfer_ramp(std::span<const Vec3> stops);
+
+}  // namespace candela

@@ -1,0 +1,361 @@
+#include "elements/eigenflame/eigenflame.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "elements/eigenflame/arp_driver.h"
+#include "elements/eigenflame/flame_shape.h"
+#include "gl/program.h"
+#include "model/flame_model.h"
+#include "scene/params.h"
+#include "wind/wind_field.h"
+
+namespace candela::eigen_models {
+std::string_view find(std::string_view name);
+}
+
+namespace candela {
+namespace {
+
+constexpr float kLabelLean = 0.05f;  // image widths a wind-left/right label adds to a frame's lean
+
+ImageStack stack_of(const model::QuantisedImages& q) {
+  ImageStack s;
+  s.u16 = q.dtype == model::DType::kU16;
+  s.count = q.count;
+  s.width = q.width;
+  s.height = q.height;
+  s.data = q.data;
+  s.scale = q.scale;
+  s.offset = q.offset;
+  return s;
+}
+
+// Each frame's lean: the intensity-weighted centroid x of its reconstruction,
+// in image widths from the centre, relative to the calm frames' median.
+// Linear in the weights, so per-component sums make this O(frames x E).
+std::shared_ptr<EigenModel> derive(std::shared_ptr<const model::FlameModel> m, std::string source) {
+  auto em = std::make_shared<EigenModel>();
+  em->source = std::move(source);
+  const int w = m->width(), e = m->components(), f = m->frames();
+  const size_t px = m->mean.pixels();
+  std::vector<double> m0(static_cast<size_t>(e) + 1), m1(static_cast<size_t>(e) + 1);
+  for (int k = -1; k < e; ++k) {
+    double s0 = 0, s1 = 0;
+    for (size_t p = 0; p < px; ++p) {
+      const double v = k < 0 ? m->mean.value(0, p) : m->eigen.value(k, p);
+      const double x = (static_cast<double>(p % w) + 0.5) / w - 0.5;
+      s0 += v;
+      s1 += v * x;
+    }
+    m0[static_cast<size_t>(k + 1)] = s0;
+    m1[static_cast<size_t>(k + 1)] = s1;
+  }
+  std::vector<double> lean(static_cast<size_t>(f));
+  for (int i = 0; i < f; ++i) {
+    const auto wt = m->weights_of(i);
+    double s0 = m0[0], s1 = m1[0];
+    for (int k = 0; k < e; ++k) s0 += wt[k] * m0[k + 1], s1 += wt[k] * m1[k + 1];
+    lean[static_cast<size_t>(i)] = s0 > 1e-9 ? s1 / s0 : 0.0;
+  }
+  // The calm reference: frames labelled calm, else all frames.
+  std::vector<double> calm;
+  for (const auto& c : m->clips)
+    for (const auto& l : c.labels)
+      if (l.label == "calm")
+        for (int i = l.from; i < l.to; ++i) calm.push_back(lean[static_cast<size_t>(i)]);
+  if (calm.empty()) calm = lean;
+  std::nth_element(calm.begin(), calm.begin() + static_cast<ptrdiff_t>(calm.size() / 2),
+                   calm.end());
+  const double ref = calm[calm.size() / 2];
+  for (double& l : lean) l -= ref;
+  for (const auto& c : m->clips)
+    for (const auto& l : c.labels) {
+      const double bias = l.label == "wind-right"  ? kLabelLean
+                          : l.label == "wind-left" ? -kLabelLean
+                                                   : 0;
+      for (int i = l.from; i < l.to; ++i) lean[static_cast<size_t>(i)] += bias;
+    }
+  em->lean.reserve(lean.size());
+  for (double l : lean) em->lean.push_back(Fixed::from_double(l));
+  em->model = std::move(m);
+  return em;
+}
+
+// transfer = "#000000 #8a1800 #ff8020 #fff0c0": evenly spaced colour stops, dark to bright.
+std::vector<Vec3> parse_transfer(ParamReader& r) {
+  std::vector<Vec3> stops;
+  const std::string text = r.string("transfer", "");
+  size_t at = 0;
+  while (at < text.size()) {
+    const size_t end = text.find_first_of(" ,", at);
+    const std::string tok =
+        text.substr(at, end == std::string::npos ? std::string::npos : end - at);
+    at = end == std::string::npos ? text.size() : end + 1;
+    if (tok.empty()) continue;
+    unsigned cr = 0, cg = 0, cb = 0;
+    if (tok.size() != 7 || tok[0] != '#' ||
+        std::sscanf(tok.c_str() + 1, "%2x%2x%2x", &cr, &cg, &cb) != 3)
+      r.fail("transfer", "expected colour stops \"#rrggbb #rrggbb ...\", got \"" + tok + "\"");
+    stops.push_back({cr / 255.0f, cg / 255.0f, cb / 255.0f});
+  }
+  if (!text.empty() && stops.size() < 2) r.fail("transfer", "expected at least two colour stops");
+  return stops;
+}
+
+// ---------------------------------------------------------------------------
+
+class EigenFlame final : public Element {
+ public:
+  EigenFlame(const EigenFlameSettings& s, std::shared_ptr<const EigenModel> model, Vec3 position,
+             uint64_t seed)
+      : s_(s), model_(std::move(model)), position_(position) {
+    const model::FlameModel& m = *model_->model;
+    const double fps = m.clips.empty() ? 30.0 : m.clips.front().fps;
+    // Model frames per animation step (60 steps per second; the step length is known in update).
+    fps_ = Fixed::from_double(fps) * s.speed;
+    FlameLookSettings look;
+    const float hue = s.has_hue ? s.hue : m.colour.hue;
+    const float sat = s.has_saturation ? s.saturation : m.colour.saturation;
+    look.ramp = s.transfer.size() >= 2 ? transfer_ramp(s.transfer) : hls_ramp(hue, sat);
+    look.brightness = s.brightness;
+    look.glow_radius = s.has_glow_radius ? s.glow_radius : std::max(0.02f, m.colour.glow_radius);
+    look.glow_strength = s.has_glow_strength ? s.glow_strength : m.colour.glow_strength;
+    const int e = s.components > 0 ? s.components : EigenReconstructor::kMaxComponents;
+
+    if (s.driver == EigenDriver::kArp && m.has_learning_flames) {
+      const auto& L = m.flames;
+      shape_ = std::make_unique<FlameShapeModel>(FlameShapeModel::from(m));
+      ArpView v;
+      v.dim = L.dim;
+      v.order = L.order;
+      v.A = L.A;
+      v.d = L.d;
+      v.B = L.B;
+      v.training = L.params;
+      arp_ = std::make_unique<ArpProcess>(v, seed);
+      prev_.fill(0);
+      next_.fill(0);
+      const auto st = arp_->state();
+      std::copy(st.begin(), st.end(), prev_.begin());
+      const auto s1 = arp_->step();
+      std::copy(s1.begin(), s1.end(), next_.begin());
+      shown_ = prev_;
+      renderer_ = std::make_unique<EigenRenderer>(
+          stack_of(L.mean), stack_of(L.eigen), s.layout, L.ne, look,
+          std::span<const float>(shown_.data() + L.np + L.nw + 1, static_cast<size_t>(L.ne)));
+    } else {
+      if (s.driver == EigenDriver::kArp)
+        LOG_WARN("eigenflame: %s has no Learning Flames part; playing its motion graph instead",
+                 model_->source.c_str());
+      GraphView g{m.graph.offsets, m.graph.successors, m.graph.cost};
+      GraphWalker walker(g, m.weights, m.components(), model_->lean, s.walk, seed);
+      player_ = std::make_unique<GraphPlayer>(std::move(walker), m.weights, m.components(),
+                                              Fixed::from_ratio(1, 2));
+      renderer_ = std::make_unique<EigenRenderer>(stack_of(m.mean), stack_of(m.eigen), s.layout, e,
+                                                  look, player_->weights());
+    }
+    if (s.embers.enabled) {
+      embers_ = Program::from_library("eigenflame_embers.vert", "eigenflame_embers.frag");
+      embers_vao_ = make_vertex_array();
+      ue_ = {embers_.uniform("u_view_projection"),
+             embers_.uniform("u_centre"),
+             embers_.uniform("u_half"),
+             embers_.uniform("u_time"),
+             embers_.uniform("u_colour"),
+             embers_.uniform("u_seed")};
+      ember_seed_ = static_cast<float>(seed % 1000) / 1000.0f;
+    }
+  }
+
+  void update(const StepContext& step) override {
+    // The wind this flame feels sets the lean it should show (first-order lag).
+    WindSample w{};
+    if (step.wind) w = step.wind->sample(position_);
+    const Fixed target = clamp(w.x * s_.wind_lean, -s_.max_lean, s_.max_lean);
+    const Fixed k = std::min(Fixed::from_int(1), step.dt * s_.lean_response);
+    lean_ += (target - lean_) * k;
+    wind_x_ += (w.x - wind_x_) * k;  // the wind the flame has caught up with (arp bending)
+    time_ = step.time;
+    const Fixed per_step = fps_ * step.dt;
+    if (player_) {
+      player_->set_rate(per_step);
+      player_->step(lean_);
+    } else if (arp_) {
+      phase_ += per_step;
+      while (phase_ >= Fixed::from_int(1)) {
+        phase_ -= Fixed::from_int(1);
+        prev_ = next_;
+        const auto st = arp_->step();
+        std::copy(st.begin(), st.end(), next_.begin());
+      }
+      // The state shown between two model frames (display only: float is fine).
+      const float t = phase_.to_float();
+      for (int i = 0; i < shape_->dim(); ++i) shown_[i] = prev_[i] + (next_[i] - prev_[i]) * t;
+    }
+  }
+
+  void draw(const FrameContext& f, DrawPass pass) override {
+    if (pass == DrawPass::kBackground) {
+      renderer_->prepare(f.frame, f.width, f.height);
+      return;
+    }
+    // Embers go after every element's offscreen work (kBackground), so the
+    // screen's framebuffer is left and re-entered once per frame, not once per
+    // flame (on tilers and llvmpipe each re-entry stores and reloads it).
+    if (pass == DrawPass::kBody && embers_.id()) draw_embers(f);
+    if (pass != DrawPass::kFlame) return;
+    FlamePose pose;
+    pose.origin = position_;
+    pose.height = s_.height;
+    pose.widen = s_.widen;
+    if (shape_) {
+      pose.deform = true;
+      shape_->pose({shown_.data(), static_cast<size_t>(shape_->dim())},
+                   wind_x_.to_float() * s_.wind_bend.to_float(), pose);
+    }
+    renderer_->composite(f.view, f.view_projection, pose);
+  }
+
+ private:
+  void draw_embers(const FrameContext& f) {
+    embers_.use();
+    glUniformMatrix4fv(ue_[0], 1, GL_FALSE, f.view_projection.m);
+    glUniform3f(ue_[1], position_.x, position_.y + 0.002f, position_.z);
+    glUniform2f(ue_[2], s_.embers.width * 0.5f, s_.embers.depth * 0.5f);
+    glUniform1f(ue_[3], static_cast<float>(time_.to_double()));
+    glUniform3f(ue_[4], s_.embers.colour.x, s_.embers.colour.y, s_.embers.colour.z);
+    glUniform1f(ue_[5], ember_seed_);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glBindVertexArray(embers_vao_.get());
+    glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    glDisable(GL_BLEND);
+  }
+
+  EigenFlameSettings s_;
+  std::shared_ptr<const EigenModel> model_;
+  Vec3 position_;
+  Fixed fps_, lean_, phase_, time_, wind_x_;
+  std::unique_ptr<GraphPlayer> player_;
+  std::unique_ptr<ArpProcess> arp_;
+  std::unique_ptr<FlameShapeModel> shape_;
+  std::array<float, ArpProcess::kMaxDim> prev_{}, next_{}, shown_{};
+  std::unique_ptr<EigenRenderer> renderer_;
+  Program embers_;
+  VertexArray embers_vao_;
+  std::array<GLint, 6> ue_{};
+  float ember_seed_ = 0;
+};
+
+}  // namespace
+
+std::shared_ptr<const EigenModel> load_eigen_model(const std::string& path) {
+  auto m = std::make_shared<const model::FlameModel>(model::FlameModel::load(path));
+  return derive(std::move(m), path);
+}
+
+std::shared_ptr<const EigenModel> default_eigen_model() {
+  static std::mutex mu;
+  static std::shared_ptr<const EigenModel> cached;
+  std::lock_guard<std::mutex> lock(mu);
+  if (!cached) {
+    const auto bytes = eigen_models::find("default.cmodel");
+    if (bytes.empty()) throw RuntimeError("eigenflame: the built-in default model is missing");
+    std::vector<uint8_t> copy(bytes.begin(), bytes.end());
+    auto m = std::make_shared<const model::FlameModel>(model::FlameModel::from(
+        model::ModelFile::from_bytes(std::move(copy), "<built-in default>")));
+    cached = derive(std::move(m), "<built-in default>");
+  }
+  return cached;
+}
+
+std::unique_ptr<Element> EigenFlameSpec::create(const SceneContext& context) const {
+  return std::make_unique<EigenFlame>(settings, model, position, context.seed);
+}
+
+std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
+  auto spec = std::make_unique<EigenFlameSpec>();
+  EigenFlameSettings& s = spec->settings;
+  const std::string model_name = r.string("model", "");
+  s.height = static_cast<float>(r.number("height", s.height, 0.001, 100));
+  s.widen = static_cast<float>(r.number("widen", s.widen, 0.1, 10));
+  s.driver = r.string("driver", "graph", {"graph", "arp"}) == "arp" ? EigenDriver::kArp
+                                                                    : EigenDriver::kGraph;
+  s.components =
+      static_cast<int>(r.integer("components", 0, 0, EigenReconstructor::kMaxComponents));
+  s.layout = r.string("layout", "packed", {"packed", "layered"}) == "layered"
+                 ? StackLayout::kLayered
+                 : StackLayout::kPacked;
+  s.speed = r.fixed("speed", 1.0, 0.05, 8.0);
+  s.has_hue = r.has("hue");
+  s.hue = static_cast<float>(r.number("hue", s.hue, 0, 360));
+  s.has_saturation = r.has("saturation");
+  s.saturation = static_cast<float>(r.number("saturation", s.saturation, 0, 1));
+  s.transfer = parse_transfer(r);
+  s.brightness = static_cast<float>(r.number("brightness", s.brightness, 0, 16));
+  s.has_glow_radius = r.has("glow_radius");
+  s.glow_radius = static_cast<float>(r.number("glow_radius", s.glow_radius, 0, 1));
+  s.has_glow_strength = r.has("glow_strength");
+  s.glow_strength = static_cast<float>(r.number("glow_strength", s.glow_strength, 0, 8));
+  {
+    ParamReader g = r.table("graph");
+    s.walk.max_stretch = static_cast<int>(g.integer("max_stretch", s.walk.max_stretch, 1, 100000));
+    s.walk.window = static_cast<int>(g.integer("window", s.walk.window, 1, 1000000));
+    s.walk.jump_chance = g.fixed("jump_chance", s.walk.jump_chance.to_double(), 0, 1);
+    s.walk.steer_chance = g.fixed("steer_chance", s.walk.steer_chance.to_double(), 0, 1);
+    s.walk.lean_tolerance = g.fixed("lean_tolerance", s.walk.lean_tolerance.to_double(), 0.001, 1);
+    g.finish();
+  }
+  {
+    ParamReader w = r.table("wind");
+    s.wind_lean = w.fixed("lean", s.wind_lean.to_double(), 0, 2);
+    s.max_lean = w.fixed("max_lean", s.max_lean.to_double(), 0, 2);
+    s.lean_response = w.fixed("response", s.lean_response.to_double(), 0.01, 100);
+    s.wind_bend = w.fixed("bend", s.wind_bend.to_double(), 0, 4);
+    w.finish();
+  }
+  if (r.has("embers")) {
+    ParamReader e = r.table("embers");
+    s.embers.enabled = true;
+    s.embers.width = static_cast<float>(e.number("width", s.embers.width, 0.01, 100));
+    s.embers.depth = static_cast<float>(e.number("depth", s.embers.depth, 0.01, 100));
+    s.embers.colour = e.color("colour", s.embers.colour);
+    e.finish();
+  }
+  r.finish();
+
+  // The model: validated now (so `candela --check` reports it); on failure the
+  // element plays the built-in model instead.
+  if (!model_name.empty()) {
+    const std::string path = resolve_relative(r.file(), model_name);
+    try {
+      spec->model = load_eigen_model(path);
+    } catch (const std::exception& e) {
+      spec->model_error = r.key_path("model") + ": " + e.what();
+      LOG_ERROR("%s: %s; using the built-in default model", r.file().c_str(),
+                spec->model_error.c_str());
+    }
+  }
+  if (!spec->model) spec->model = default_eigen_model();
+  if (s.driver == EigenDriver::kArp && !spec->model->model->has_learning_flames)
+    LOG_WARN(
+        "%s: %s: model %s has no Learning Flames part; driver \"arp\" will play its motion graph",
+        r.file().c_str(), r.key_path("driver").c_str(), spec->model->source.c_str());
+  return spec;
+}
+
+const ElementKind& eigenflame_kind() {
+  static const ElementKind k{
+      "eigenflame", "a flame played from an EigenFires / Learning Flames model, on the GPU",
+      [](ParamReader& r) -> std::unique_ptr<ElementSpec> { return parse_eigenflame(r); }};
+  return k;
+}
+
+}  // namespace candela

@@ -1,0 +1,98 @@
+// The "eigenflame" scene element: a flame played from a model built by
+// `candela-tool build` (EigenFires PCA + motion graph, optionally a Learning
+// Flames ARP), reconstructed on the GPU every frame.
+//
+//   [[element]]
+//   kind = "eigenflame"
+//   model = "flames.cmodel"    # relative to the scene; default: the built-in model
+//   position = [0, 0, 0]       # bottom centre of the flame image, world metres
+//   height = 0.5               # world height of the flame image
+//   widen = 1.0                # graph driver: stretch the image sideways (a broader fire)
+//   driver = "graph"           # graph (EigenFires walk) | arp (Learning Flames)
+//   seed = 7                   # optional; default from the scene's seed
+//   components = 0             # use the first N components (0: all the model has)
+//   layout = "packed"          # packed (4 per texel) | layered (1 per array layer)
+//   speed = 1.0                # playback speed (model frames at the model's fps)
+//   hue = 28                   # HLS colour: gray is the lightness (defaults: the model's)
+//   saturation = 0.9
+//   transfer = "#000000 #8a1800 #ff8020 #fff0c0"  # or a transfer function (even stops)
+//   brightness = 1.0
+//   glow_radius = 0.12         # fraction of the flame height (default: the model's)
+//   glow_strength = 0.6
+//   [element.graph]  max_stretch = 45  window = 1800  jump_chance = 0.08  steer_chance = 0.17
+//   [element.wind]   lean = 0.05  max_lean = 0.2  response = 2.0  bend = 0.15
+//   [element.embers] width = 0.6  depth = 0.25  colour = "#ff5010"  # a glowing bed under it
+//
+// A model that cannot be loaded is reported (file, key, what is wrong) when
+// the scene is read (also by `candela --check`) and the element plays the
+// built-in default model instead, so the display never goes dark.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/fixed.h"
+#include "elements/eigenflame/eigen_renderer.h"
+#include "elements/eigenflame/graph_walker.h"
+#include "gl/math.h"
+#include "scene/element.h"
+
+namespace candela {
+
+namespace model {
+class FlameModel;
+}
+
+// A loaded model plus what the runtime derives from it once (per-frame lean).
+struct EigenModel {
+  std::shared_ptr<const model::FlameModel> model;
+  std::string source;       // path, or "<built-in default>"
+  std::vector<Fixed> lean;  // per frame: centroid x relative to the calm lean, image widths
+};
+
+// The built-in model (firmware/models/default.cmodel, embedded); loaded once.
+std::shared_ptr<const EigenModel> default_eigen_model();
+// Loads and validates a model file; throws model::ModelError / ConfigError.
+std::shared_ptr<const EigenModel> load_eigen_model(const std::string& path);
+
+enum class EigenDriver { kGraph, kArp };
+
+struct EigenEmbers {
+  bool enabled = false;
+  float width = 0.6f, depth = 0.25f;
+  Vec3 colour{1.0f, 0.32f, 0.06f};
+};
+
+struct EigenFlameSettings {
+  float height = 0.5f;
+  float widen = 1.0f;  // graph driver: stretches the image sideways
+  EigenDriver driver = EigenDriver::kGraph;
+  int components = 0;
+  StackLayout layout = StackLayout::kPacked;
+  Fixed speed = Fixed::from_int(1);
+  bool has_hue = false, has_saturation = false, has_glow_radius = false, has_glow_strength = false;
+  float hue = 28, saturation = 0.9f;
+  std::vector<Vec3> transfer;  // non-empty: overrides HLS
+  float brightness = 1.0f;
+  float glow_radius = 0.12f, glow_strength = 0.6f;
+  WalkSettings walk;
+  Fixed wind_lean = Fixed::from_ratio(5, 100);   // target lean per m/s, image widths
+  Fixed max_lean = Fixed::from_ratio(20, 100);   // image widths
+  Fixed lean_response = Fixed::from_int(2);      // 1/s
+  Fixed wind_bend = Fixed::from_ratio(15, 100);  // arp: path offset at the tip per m/s, heights
+  EigenEmbers embers;
+};
+
+class EigenFlameSpec final : public ElementSpec {
+ public:
+  std::unique_ptr<Element> create(const SceneContext& context) const override;
+  EigenFlameSettings settings;
+  std::shared_ptr<const EigenModel> model;  // never null: the default if the named one failed
+  std::string model_error;                  // why the named model was not used (empty: it was)
+};
+
+std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& reader);
+const ElementKind& eigenflame_kind();
+
+}  // namespace candela

@@ -1,0 +1,239 @@
+// Eigen-flames on the GPU (headless llvmpipe): reconstruction against the
+// CPU reference, wind leaning the rendered flame and letting it return, and
+// the fallback when a model cannot be loaded.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "display/display.h"
+#include "elements/eigenflame/eigen_renderer.h"
+#include "elements/eigenflame/eigenflame.h"
+#include "gl/gles.h"
+#include "model/flame_model.h"
+#include "model/model_writer.h"
+#include "scene/scene.h"
+#include "scene/scene_file.h"
+#include "support/render_harness.h"
+#include "wind/wind_field.h"
+
+namespace candela {
+namespace {
+
+std::string default_model_path() {
+  return std::string(CANDELA_SOURCE_DIR) + "/firmware/models/default.cmodel";
+}
+
+std::unique_ptr<Display> headless(int w, int h) {
+  DisplayOptions o;
+  o.kind = "headless";
+  o.vsync = false;
+  o.width = w;
+  o.height = h;
+  return open_display(o);
+}
+
+ImageStack stack_of(const model::QuantisedImages& q) {
+  return {q.dtype == model::DType::kU16, q.count, q.width, q.height, q.data, q.scale, q.offset};
+}
+
+// The default model with its eigen-images requantised to 16 bits.
+model::FlameModel sixteen_bit_copy(const model::FlameModel& m) {
+  model::ModelWriter w;
+  w.set_info(m.file().info());
+  for (const auto& t : m.file().tensors())
+    if (t.name.rfind("eigen.", 0) != 0) w.add(t.name, t.dtype, t.shape, {t.data, t.bytes});
+  std::vector<float> eig(static_cast<size_t>(m.components()) * m.eigen.pixels());
+  for (int k = 0; k < m.components(); ++k)
+    for (size_t p = 0; p < m.eigen.pixels(); ++p)
+      eig[k * m.eigen.pixels() + p] = m.eigen.value(k, p);
+  const auto q =
+      model::quantise_images(eig.data(), m.components(), m.eigen.pixels(), model::DType::kU16);
+  model::add_quantised(w, "eigen", q, m.components(), m.width(), m.height());
+  return model::FlameModel::from(model::ModelFile::from_bytes(w.bytes(), "<16-bit copy>"));
+}
+
+struct Diff {
+  double mean = 0, max = 0;
+};
+
+// GPU reconstruction of stored frames vs FlameModel::reconstruct (clamped to
+// 0..255, as an 8-bit target holds it), in gray levels.
+Diff compare_reconstruction(const model::FlameModel& m, StackLayout layout) {
+  EigenReconstructor r(stack_of(m.mean), stack_of(m.eigen), layout, m.components());
+  const size_t px = m.mean.pixels();
+  std::vector<float> cpu(px);
+  std::vector<uint8_t> gpu(px * 4);
+  double sum = 0, worst = 0;
+  size_t n = 0;
+  for (int f = 0; f < m.frames(); f += 37) {
+    r.reconstruct(m.weights_of(f));
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, m.width(), m.height(), GL_RGBA, GL_UNSIGNED_BYTE, gpu.data());
+    m.reconstruct(m.weights_of(f), cpu);
+    for (size_t p = 0; p < px; ++p) {
+      // Framebuffer row 0 holds the image's first (top) row, as the CPU's does.
+      const double d = std::abs(gpu[p * 4] - std::clamp(cpu[p], 0.0f, 255.0f));
+      sum += d;
+      worst = std::max(worst, d);
+      ++n;
+    }
+  }
+  return {sum / static_cast<double>(n), worst};
+}
+
+TEST(EigenReconstruction, GpuMatchesCpuForStoredFrames) {
+  auto display = headless(64, 64);
+  const auto m = model::FlameModel::load(default_model_path());
+  const auto m16 = sixteen_bit_copy(m);
+  for (const auto* model : {&m, &m16})
+    for (StackLayout layout : {StackLayout::kPacked, StackLayout::kLayered}) {
+      const Diff d = compare_reconstruction(*model, layout);
+      std::printf("%s, %s: mean |GPU - CPU| = %.3f, max = %.1f gray levels (of 255)\n",
+                  model == &m ? "U8 model" : "U16 model",
+                  layout == StackLayout::kPacked ? "packed" : "layered", d.mean, d.max);
+      EXPECT_LT(d.mean, 1.0);
+      EXPECT_LE(d.max, 2.0);
+    }
+}
+
+// Intensity-weighted centroid x of a frame read back from the GL framebuffer.
+double centroid_x(const std::vector<uint8_t>& rgba, int w, int h) {
+  double s0 = 0, s1 = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const uint8_t* p = &rgba[(static_cast<size_t>(y) * w + x) * 4];
+      const double l = 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
+      s0 += l;
+      s1 += l * x;
+    }
+  return s0 > 0 ? s1 / s0 : w / 2.0;
+}
+
+// Runs a scene step by step (60 steps/s), drawing and reading back every
+// frame, so that the wind can change in the middle of a run.
+class SteppedScene {
+ public:
+  SteppedScene(const std::string& toml, int w, int h)
+      : desc_(load_scene_text(toml, "<test scene>")),
+        display_(headless(w, h)),
+        scene_(desc_),
+        w_(w),
+        h_(h),
+        pixels_(static_cast<size_t>(w) * h * 4) {}
+  // Mean lean (centroid x, pixels) over `frames` frames.
+  double run(int frames) {
+    double sum = 0;
+    for (int i = 0; i < frames; ++i) {
+      StepContext st;
+      st.step = step_;
+      st.dt = Fixed::from_ratio(1, 60);
+      st.time = Fixed::from_ratio(static_cast<int64_t>(step_), 60);
+      scene_.update(st);
+      FrameContext fc;
+      fc.width = w_;
+      fc.height = h_;
+      fc.frame = fc.step = step_++;
+      display_->begin_frame();
+      scene_.draw(fc);
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glReadPixels(0, 0, w_, h_, GL_RGBA, GL_UNSIGNED_BYTE, pixels_.data());
+      sum += centroid_x(pixels_, w_, h_);
+      display_->present();
+    }
+    return sum / frames;
+  }
+  Scene& scene() { return scene_; }
+
+ private:
+  SceneDesc desc_;
+  std::unique_ptr<Display> display_;
+  Scene scene_;
+  int w_, h_;
+  uint64_t step_ = 0;
+  std::vector<uint8_t> pixels_;
+};
+
+constexpr const char* kWindScene = R"(
+seed = 4
+[background]
+color = "#000000"
+[camera]
+position = [0.0, 0.3, 1.2]
+target = [0.0, 0.3, 0.0]
+fov = 40
+[[element]]
+kind = "eigenflame"
+position = [0.0, 0.0, 0.0]
+height = 0.6
+components = 24
+glow_strength = 0
+driver = "DRIVER"
+)";
+
+void check_wind_leans_and_returns(const std::string& driver) {
+  std::string toml = kWindScene;
+  toml.replace(toml.find("DRIVER"), 6, driver);
+  SteppedScene s(toml, 160, 120);
+  s.run(60);
+  const double calm = s.run(480);
+  // A steady wind from the left (blowing to +x).
+  s.scene().wind().push({WindEvent::Type::kSteady, Fixed::from_int(3), Fixed{}});
+  s.run(150);  // it travels from plane S and the flame follows
+  const double windy = s.run(480);
+  s.scene().wind().push({WindEvent::Type::kSteady, Fixed{}, Fixed{}});
+  s.run(240);
+  const double after = s.run(480);
+  std::printf(
+      "%s: mean lean (centroid x, px of 160): calm %.2f, wind from the left %.2f, after %.2f\n",
+      driver.c_str(), calm, windy, after);
+  EXPECT_GT(windy - calm,
+            1.5);  // the default model's breeze frames lean ~0.045 image widths (~2.5 px here)
+  EXPECT_LT(std::abs(after - calm), 0.35 * (windy - calm));
+}
+
+TEST(EigenWind, GraphWalkLeansWithTheWindAndReturns) { check_wind_leans_and_returns("graph"); }
+TEST(EigenWind, ArpFlameBendsWithTheWindAndReturns) { check_wind_leans_and_returns("arp"); }
+
+TEST(EigenFallback, CorruptModelIsReportedAndTheDefaultPlays) {
+  const std::string dir = std::string(CANDELA_SOURCE_DIR) + "/tests/eigenflame/data";
+  const SceneDesc desc = load_scene_file(dir + "/bad-model.toml");
+  ASSERT_EQ(desc.elements.size(), 1u);
+  const auto* spec = dynamic_cast<const EigenFlameSpec*>(desc.elements[0].spec.get());
+  ASSERT_NE(spec, nullptr);
+  // The reason names the key, the file and what is wrong with it.
+  EXPECT_NE(spec->model_error.find("element[0].model"), std::string::npos) << spec->model_error;
+  EXPECT_NE(spec->model_error.find("corrupt.cmodel"), std::string::npos) << spec->model_error;
+  EXPECT_EQ(spec->model->source, "<built-in default>");
+  // And the display is not dark: the default flame burns.
+  test::RenderHarness h(load_scene_file(dir + "/bad-model.toml"), 160, 120);
+  h.run(30);
+  const test::Frame f = h.read();
+  double brightest = 0;
+  for (int y = 0; y < f.height; ++y)
+    for (int x = 0; x < f.width; ++x) brightest = std::max(brightest, f.luma(x, y));
+  EXPECT_GT(brightest, 80);
+}
+
+TEST(EigenFallback, MissingModelFallsBackToo) {
+  const SceneDesc desc = load_scene_text(
+      "[[element]]\nkind = \"eigenflame\"\nmodel = \"/nonexistent/flame.cmodel\"\n", "<test>");
+  const auto* spec = dynamic_cast<const EigenFlameSpec*>(desc.elements[0].spec.get());
+  ASSERT_NE(spec, nullptr);
+  EXPECT_NE(spec->model_error.find("/nonexistent/flame.cmodel"), std::string::npos);
+  EXPECT_EQ(spec->model->source, "<built-in default>");
+}
+
+TEST(EigenScenes, ShippedScenesLoad) {
+  for (const char* name : {"eigen-fireplace", "eigen-candle", "eigen-bench-f1-e8",
+                           "eigen-bench-f4-e32", "eigen-bench-f8-e64"}) {
+    SCOPED_TRACE(name);
+    const SceneDesc d = load_builtin_scene(name);
+    EXPECT_GE(d.elements.size(), 1u);
+  }
+}
+
+}  // namespace
+}  // namespace candela
