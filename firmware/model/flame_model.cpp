@@ -138,6 +138,9 @@ FlameModel FlameModel::from(ModelFile file) {
   m.colour.glow_radius = static_cast<float>(get_num(f, col, "model.colour", "glow_radius", 0, 1));
   m.colour.glow_strength =
       static_cast<float>(get_num(f, col, "model.colour", "glow_strength", 0, 4));
+  if (col.contains("black_level"))  // optional; older files use the default
+    m.colour.black_level =
+        static_cast<float>(get_num(f, col, "model.colour", "black_level", 0, 255));
 
   auto lf_it = info.find("learning_flames");
   if (lf_it != info.end()) {

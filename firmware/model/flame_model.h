@@ -69,6 +69,9 @@ struct ColourDefaults {
   float saturation = 0.9f;
   float glow_radius = 0.06f;  // fraction of the image height
   float glow_strength = 0.6f;
+  // Linear intensity (0..255) treated as black before colouring: hides the small
+  // reconstruction noise that the sRGB curve would lift out of the dark background.
+  float black_level = 4;
 };
 
 struct LearningFlamesModel {

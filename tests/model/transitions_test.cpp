@@ -99,6 +99,7 @@ class RealClipTransitions : public ::testing::Test {
     ct::BuildOptions o;
     o.pca.components = 24;
     o.holdout_every = 0;
+    o.learning_flames = false;
     model_ = new ct::BuiltModel(ct::build_model(*dataset_, o));
   }
   static void TearDownTestSuite() {

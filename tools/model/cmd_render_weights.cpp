@@ -76,7 +76,7 @@ int run_render_weights(int argc, char** argv) {
                                   img.data(), m.width(), m.height(), hue >= 0 ? hue : m.colour.hue,
                                   sat >= 0 ? sat : m.colour.saturation,
                                   glow_radius >= 0 ? glow_radius : m.colour.glow_radius,
-                                  glow >= 0 ? glow : m.colour.glow_strength));
+                                  glow >= 0 ? glow : m.colour.glow_strength, m.colour.black_level));
     }
     std::printf("%s: %dx%d\n", out.c_str(), m.width(), m.height());
     return 0;

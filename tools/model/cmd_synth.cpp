@@ -18,7 +18,7 @@ int run_synth(int argc, char** argv) {
       "render them",
       "candela-tool synth"};
   std::string path, out;
-  int frames = 120, start = 0;
+  int frames = 120, start = -1;
   uint64_t seed = 1;
   bool gray = false;
   double lean = 0;
@@ -28,7 +28,8 @@ int run_synth(int argc, char** argv) {
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   app.add_option("--seed", seed, "noise seed")->capture_default_str();
-  app.add_option("--start", start, "training frame whose history starts the process")
+  app.add_option("--start", start,
+                 "training frame whose history starts the process (default: the first possible)")
       ->capture_default_str();
   app.add_option("--lean", lean,
                  "offset added to the path, growing to the tip (pixels): a bent flame, as wind");
@@ -45,6 +46,7 @@ int run_synth(int argc, char** argv) {
     candela::model::FlameModel fm = candela::model::FlameModel::load(path);
     ct::LearningFlamesModel lf = ct::flames_from_model(fm);
     const int K = lf.dynamics.arp.order;
+    if (start < 0) start = K - 1;
     if (start < K - 1 || start >= lf.params.rows())
       throw std::invalid_argument("--start must be a training frame >= order-1");
     std::mt19937_64 rng(seed);
@@ -74,7 +76,7 @@ int run_synth(int argc, char** argv) {
                          gray ? ct::gray_image(img.data(), fm.width(), fm.height())
                               : ct::colourise(img.data(), fm.width(), fm.height(), fm.colour.hue,
                                               fm.colour.saturation, fm.colour.glow_radius,
-                                              fm.colour.glow_strength));
+                                              fm.colour.glow_strength, fm.colour.black_level));
       if ((t + 1) % 100 == 0) std::fprintf(stderr, "synth: %d/%d frames\n", t + 1, frames);
     }
     std::printf("%s: %d frames synthesised (seed %llu)\n", out.c_str(), frames,

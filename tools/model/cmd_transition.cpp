@@ -93,7 +93,7 @@ int run_transition(int argc, char** argv) {
         candela::write_png(
             render_dir + name,
             ct::colourise(gray.data(), m.width(), m.height(), m.colour.hue, m.colour.saturation,
-                          m.colour.glow_radius, m.colour.glow_strength));
+                          m.colour.glow_radius, m.colour.glow_strength, m.colour.black_level));
       }
       std::printf("rendered %zu frames into %s\n", frames.size(), render_dir.c_str());
     }

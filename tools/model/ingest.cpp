@@ -7,10 +7,10 @@ extern "C" {
 }
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 
 #include "core/error.h"
 #include "core/image.h"
@@ -44,9 +44,13 @@ double fps_from_info(const fs::path& dir) {
     std::ifstream f(p);
     if (!f) continue;
     std::string text((std::istreambuf_iterator<char>(f)), {});
-    std::smatch m;
-    if (std::regex_search(text, m, std::regex(R"(([0-9]+(\.[0-9]+)?) fps)")))
-      return std::stod(m[1]);
+    // The first "<number> fps" in the text.
+    for (size_t at = text.find(" fps"); at != std::string::npos; at = text.find(" fps", at + 1)) {
+      size_t b = at;
+      while (b > 0 && (std::isdigit(static_cast<unsigned char>(text[b - 1])) || text[b - 1] == '.'))
+        --b;
+      if (b < at) return std::stod(text.substr(b, at - b));
+    }
   }
   return 0;
 }
@@ -185,11 +189,32 @@ SourceClip read_source(const std::string& input, int max_frames, int step, doubl
 }
 
 IngestOptions::Label parse_label(const std::string& text, const std::string& what) {
-  std::smatch m;
-  static const std::regex re(R"(^([^:]+):([0-9]+)-([0-9]+):([A-Za-z0-9_.-]+)$)");
-  if (!std::regex_match(text, m, re))
-    throw ConfigError(what, text, "expected CLIP:FROM-TO:LABEL, e.g. breeze:55-100:wind-right");
-  IngestOptions::Label l{m[1], std::stoi(m[2]), std::stoi(m[3]), m[4]};
+  // CLIP:FROM-TO:LABEL; the clip name may itself hold colons, so split from the right.
+  auto bad = [&]() -> ConfigError {
+    return ConfigError(what, text, "expected CLIP:FROM-TO:LABEL, e.g. breeze:55-100:wind-right");
+  };
+  const size_t c2 = text.rfind(':');
+  const size_t c1 =
+      c2 == std::string::npos || c2 == 0 ? std::string::npos : text.rfind(':', c2 - 1);
+  if (c1 == std::string::npos || c1 == 0) throw bad();
+  IngestOptions::Label l;
+  l.clip = text.substr(0, c1);
+  l.label = text.substr(c2 + 1);
+  const std::string range = text.substr(c1 + 1, c2 - c1 - 1);
+  const size_t dash = range.find('-');
+  auto number = [&](const std::string& s) {
+    if (s.empty() || s.size() > 9 || !std::all_of(s.begin(), s.end(), [](char ch) {
+          return std::isdigit(static_cast<unsigned char>(ch));
+        }))
+      throw bad();
+    return std::stoi(s);
+  };
+  if (dash == std::string::npos || l.label.empty()) throw bad();
+  for (char ch : l.label)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_' && ch != '.')
+      throw bad();
+  l.from = number(range.substr(0, dash));
+  l.to = number(range.substr(dash + 1));
   if (l.to <= l.from) throw ConfigError(what, text, "expected FROM < TO");
   return l;
 }

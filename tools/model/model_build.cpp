@@ -106,7 +106,8 @@ BuiltModel build_model(const Dataset& d, const BuildOptions& opt) {
                           {{"hue", opt.colour.hue},
                            {"saturation", opt.colour.saturation},
                            {"glow_radius", opt.colour.glow_radius},
-                           {"glow_strength", opt.colour.glow_strength}}},
+                           {"glow_strength", opt.colour.glow_strength},
+                           {"black_level", opt.colour.black_level}}},
                          {"psnr",
                           [&] {
                             nlohmann::json a = nlohmann::json::array();

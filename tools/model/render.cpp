@@ -61,12 +61,14 @@ Image gray_image(const float* gray, int width, int height) {
 }
 
 Image colourise(const float* gray, int width, int height, float hue_deg, float saturation,
-                float glow_radius, float glow_strength) {
+                float glow_radius, float glow_strength, float black_level) {
   const size_t n = static_cast<size_t>(width) * height;
   std::vector<float> rgb(3 * n);
   const float h = hue_deg / 360.0f;
   for (size_t p = 0; p < n; ++p) {
-    const float l = linear_to_srgb(gray[p] / 255.0f);  // lightness on the display's scale
+    const float v =
+        std::max(0.0f, gray[p] - black_level) / (255.0f - std::min(black_level, 254.0f));
+    const float l = linear_to_srgb(v);  // lightness on the display's scale
     const float m2 = l <= 0.5f ? l * (1 + saturation) : l + saturation - l * saturation;
     const float m1 = 2 * l - m2;
     rgb[3 * p] = hls_channel(m1, m2, h + 1.0f / 3);
