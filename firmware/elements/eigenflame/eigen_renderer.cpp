@@ -441,7 +441,14 @@ void EigenBatch::prepare(uint64_t frame, int screen_w, int screen_h) {
   caller.restore(screen_w, screen_h);
 }
 
-std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation) {
+namespace {
+double lightness(int i, float black) {
+  const double b = std::clamp(static_cast<double>(black), 0.0, 254.0);
+  return std::clamp((i - b) / (255.0 - b), 0.0, 1.0);
+}
+}  // namespace
+
+std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation, float black) {
   std::array<uint8_t, 256 * 4> r{};
   const double h = std::fmod(hue_deg, 360.0) / 360.0, s = std::clamp(saturation, 0.0f, 1.0f);
   auto channel = [](double p, double q, double t) {
@@ -453,7 +460,7 @@ std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation) {
     return p;
   };
   for (int i = 0; i < 256; ++i) {
-    const double l = i / 255.0;
+    const double l = lightness(i, black);
     const double q = l < 0.5 ? l * (1 + s) : l + s - l * s, p = 2 * l - q;
     const double rgb[3] = {channel(p, q, h + 1.0 / 3), channel(p, q, h),
                            channel(p, q, h - 1.0 / 3)};
@@ -465,11 +472,11 @@ std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation) {
   return r;
 }
 
-std::array<uint8_t, 256 * 4> transfer_ramp(std::span<const Vec3> stops) {
+std::array<uint8_t, 256 * 4> transfer_ramp(std::span<const Vec3> stops, float black) {
   std::array<uint8_t, 256 * 4> r{};
   const size_t n = stops.size();
   for (int i = 0; i < 256; ++i) {
-    const double x = i / 255.0 * static_cast<double>(n - 1);
+    const double x = lightness(i, black) * static_cast<double>(n - 1);
     const size_t a = std::min(n - 2, static_cast<size_t>(x));
     const float t = static_cast<float>(x - a);
     const Vec3 c = stops[a] * (1 - t) + stops[a + 1] * t;

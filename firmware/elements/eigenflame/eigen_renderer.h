@@ -166,9 +166,10 @@ class EigenBatch {
 };
 
 // The HLS colour ramp (gray as lightness, fixed hue and saturation), as the
-// EigenFires paper colours its flames.
-std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation);
+// EigenFires paper colours its flames. Gray at or below `black` (0..255) is
+// black: it hides the faint reconstruction noise around the flame.
+std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation, float black = 0);
 // A transfer function through evenly spaced colour stops (at least two).
-std::array<uint8_t, 256 * 4> transfer_ramp(std::span<const Vec3> stops);
+std::array<uint8_t, 256 * 4> transfer_ramp(std::span<const Vec3> stops, float black = 0);
 
 }  // namespace candela

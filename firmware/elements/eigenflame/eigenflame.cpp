@@ -122,7 +122,9 @@ class EigenFlame final : public Element {
     FlameLookSettings look;
     const float hue = s.has_hue ? s.hue : m.colour.hue;
     const float sat = s.has_saturation ? s.saturation : m.colour.saturation;
-    look.ramp = s.transfer.size() >= 2 ? transfer_ramp(s.transfer) : hls_ramp(hue, sat);
+    const float black = m.colour.black_level;
+    look.ramp =
+        s.transfer.size() >= 2 ? transfer_ramp(s.transfer, black) : hls_ramp(hue, sat, black);
     look.brightness = s.brightness;
     look.glow_radius = s.has_glow_radius ? s.glow_radius : std::max(0.02f, m.colour.glow_radius);
     look.glow_strength = s.has_glow_strength ? s.glow_strength : m.colour.glow_strength;
