@@ -22,6 +22,7 @@ import zlib
 CASE, BUILD = sys.argv[1], os.path.abspath(sys.argv[2])
 CANDELA = os.path.join(BUILD, "firmware", "candela")
 RECORD = os.path.join(BUILD, "tools", "record", "candela-record")
+TOOL = os.path.join(BUILD, "tools", "candela-tool", "candela-tool")
 WORK = tempfile.mkdtemp(prefix="candela-vb-")
 FAILED = []
 
@@ -329,6 +330,15 @@ def case_record_vivid():
     check(m["locked"].get("gain_automatic") == "off", "auto gain locked off: %s" % m["locked"])
     check(re.search(r"\b[0-9.]+ fps\b", open(os.path.join(out, "info.txt")).read()) is not None,
           "info.txt gives the rate the way ingest reads it")
+    # The recording is a dataset as it stands: candela-tool ingest reads it unchanged.
+    ds = os.path.join(WORK, "clip_dataset")
+    p = subprocess.run([TOOL, "ingest", out, "--out", ds, "--width", "32", "--height", "48"],
+                       capture_output=True, text=True, timeout=120)
+    check(p.returncode == 0, "candela-tool ingest accepts the recording: " + p.stderr.strip()[-300:])
+    if p.returncode == 0:
+        d = json.load(open(os.path.join(ds, "manifest.json")))
+        check(d["frames"] == n and d["clips"][0]["fps"] == m["fps"],
+              "the dataset holds the %d recorded frames at the recorded rate (%s)" % (n, d["clips"][0]))
     # Sustained rate at 640x480 (a figure for the report; TCG is slow, so not asserted).
     out2 = os.path.join(WORK, "vga")
     p = record(out2, "--size", "640x480", "--fps", "30", "--seconds", "6")
