@@ -44,7 +44,8 @@ mount -t devtmpfs dev $r/dev
 mkdir -p $r/dev/pts $r/dev/shm
 mount -t devpts devpts $r/dev/pts
 mount -t tmpfs -o mode=1777 tmpfs $r/dev/shm
-mount -t tmpfs -o mode=1777 tmpfs $r/tmp
+# /tmp is left as the host's (writes land in the RAM overlay): a checkout or
+# build under /tmp, as CI may use, must stay visible inside.
 mount -t tmpfs -o mode=0755 tmpfs $r/run
 mount -t configfs configfs $r/sys/kernel/config || fail "cannot mount configfs"
 out=$(cat /vbshare/out_dir)

@@ -219,7 +219,11 @@ def case_gpio_chip_removed():
                  lambda: (lambda i: i if i["status"].startswith("lost") else None)(c.input("p")),
                  timeout=10)
     check("lost" in p["status"], "state reports the line lost: %s" % p["status"])
-    check(c.state()["wind"]["z"] == 0, "the draught stops with the sensor gone (calm)")
+    # The input thread marks the loss first; the frame loop applies the calm
+    # on its next frame.
+    st = wait_for("the draught to stop", lambda: (lambda s: s if s["wind"]["z"] == 0 else None)(c.state()),
+                  timeout=10)
+    check(st["wind"]["z"] == 0, "the draught stops with the sensor gone (calm)")
     f0 = c.state()["frame"]
     wait_for("frames to keep coming", lambda: c.state()["frame"] > f0 + 5, timeout=20)
     check(c.proc.poll() is None, "the display keeps running")
