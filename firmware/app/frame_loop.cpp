@@ -1,5 +1,6 @@
 #include "app/frame_loop.h"
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -13,12 +14,9 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
   StepClock clock(s.steps_per_second);
   const bool lockstep = !display.paced_by_vsync() && !s.realtime;
   const bool self_paced = !display.paced_by_vsync() && s.realtime;
-  const auto frame_period = std::chrono::nanoseconds(
-      1'000'000'000LL / (s.frames_per_second > 0 ? s.frames_per_second : 60));
-  const int steps_per_frame =
-      s.steps_per_second / (s.frames_per_second > 0 ? s.frames_per_second : 60) > 0
-          ? s.steps_per_second / s.frames_per_second
-          : 1;
+  const int fps = s.frames_per_second > 0 ? s.frames_per_second : 60;
+  const auto frame_period = std::chrono::nanoseconds(1'000'000'000LL / fps);
+  const int steps_per_frame = std::max(1, s.steps_per_second / fps);
   LoopResult result;
   StepContext step;
   step.dt = clock.step_seconds();
@@ -60,9 +58,9 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
     scene.draw(frame);
     display.present();
     const auto end = Clock::now();
-    frame.last_frame_ms = std::chrono::duration<double, std::milli>(end - begin).count();
+    const double work = std::chrono::duration<double, std::milli>(end - begin).count();
+    frame.last_frame_ms = work;
     if (s.stats) {
-      const double work = std::chrono::duration<double, std::milli>(end - begin).count();
       const double interval = std::chrono::duration<double, std::milli>(end - last_present).count();
       s.stats->add(result.frames == 0 ? work : interval, work);
     }

@@ -56,22 +56,9 @@ CubicSpline curve(const std::vector<double>& v) {
   return CubicSpline(t, v);
 }
 
-float bilinear(const uint8_t* img, int w, int h, double x, double y) {
-  x -= 0.5;
-  y -= 0.5;
-  const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
-  const double fx = x - x0, fy = y - y0;
-  double acc = 0;
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 2; ++i) {
-      const int xi = x0 + i, yj = y0 + j;
-      if (xi < 0 || yj < 0 || xi >= w || yj >= h) continue;
-      acc += (i ? fx : 1 - fx) * (j ? fy : 1 - fy) * img[static_cast<size_t>(yj) * w + xi];
-    }
-  return static_cast<float>(acc);
-}
-
-float bilinear_f(const float* img, int w, int h, double x, double y) {
+// Bilinear sample at pixel-centre coordinates; outside the image counts as 0.
+template <class Pixel>
+float bilinear(const Pixel* img, int w, int h, double x, double y) {
   x -= 0.5;
   y -= 0.5;
   const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
@@ -160,8 +147,7 @@ void denormalise(const float* norm, const FlameShape& s, const ShapeOptions& o, 
     for (int x = 0; x < width; ++x) {
       const double u = (x + 0.5 - c) / wd;
       const double col = (u / o.span + 1) / 2 * o.norm_width;
-      out[static_cast<size_t>(y) * width + x] =
-          bilinear_f(norm, o.norm_width, o.norm_height, col, r);
+      out[static_cast<size_t>(y) * width + x] = bilinear(norm, o.norm_width, o.norm_height, col, r);
     }
   }
 }
