@@ -312,9 +312,11 @@ def check_recording(out, expect_complete):
     return m
 
 
-def record(out, *args, timeout=120):
-    p = subprocess.run([RECORD, "--device", "/dev/video0", "--out", out, *args],
-                       capture_output=True, text=True, timeout=timeout)
+def record(out, *args, timeout=120, env=None):
+    # The live preview is tested by the record_preview_* cases; elsewhere it stays off.
+    preview = () if "--preview" in args else ("--preview", "off")
+    p = subprocess.run([RECORD, "--device", "/dev/video0", "--out", out, *preview, *args],
+                       capture_output=True, text=True, timeout=timeout, env=env)
     print("candela-record: status %d: %s" % (p.returncode, p.stderr.strip()), flush=True)
     return p
 
@@ -358,6 +360,14 @@ def case_record_no_camera():
     check(p.returncode == 4, "exit status 4 (no camera): %d" % p.returncode)
     check("/dev/video61" in p.stderr and "No such file" in p.stderr, "clear message: " + p.stderr.strip())
     check(not os.path.exists(out), "no empty folder left behind")
+    # An asked-for preview that cannot open changes nothing of that: same status and message,
+    # and nothing is opened before a camera delivers.
+    env = {k: v for k, v in os.environ.items() if k != "DISPLAY"}
+    p2 = subprocess.run([RECORD, "--device", "/dev/video61", "--out", out, "-n", "5", "--preview", "window"],
+                        capture_output=True, text=True, timeout=30, env=env)
+    check(p2.returncode == 4 and p2.stderr.strip().splitlines()[-1] == p.stderr.strip().splitlines()[-1],
+          "--preview window without X: the same no-camera ending: " + p2.stderr.strip())
+    check("preview" not in p2.stderr, "no preview is opened without a camera")
 
 
 def case_record_readonly():
@@ -385,7 +395,8 @@ def case_record_disk_full():
 def case_record_camera_unplugged():
     out = os.path.join(WORK, "clip")
     proc = subprocess.Popen([RECORD, "--device", "/dev/video0", "--out", out, "--size", "320x180",
-                             "--fps", "10", "-n", "100000"], stderr=subprocess.PIPE, text=True)
+                             "--fps", "10", "-n", "100000", "--preview", "off"],
+                            stderr=subprocess.PIPE, text=True)
 
     def frames_so_far():
         try:
@@ -400,6 +411,115 @@ def case_record_camera_unplugged():
     check("went away" in err, "clear message")
     m = check_recording(out, False)
     check(m["frame_count"] >= 5, "frames so far kept (%d)" % m["frame_count"])
+
+
+# --- candela-record's live preview ------------------------------------------------------
+def read_png_rgb(path):
+    """A PNG (gray or RGB) as a numpy array (H, W, 3), decoded by ffmpeg (Debian: ffmpeg)."""
+    import numpy as np
+    w, h, _ = png_size(path)
+    raw = subprocess.run(["ffmpeg", "-v", "error", "-i", path, "-f", "rawvideo", "-pix_fmt", "rgb24", "-"],
+                         capture_output=True, check=True, timeout=60).stdout
+    return np.frombuffer(raw, np.uint8).reshape(h, w, 3).astype(np.int32)
+
+
+def expected_preview(frame, dw, dh):
+    """The frame letterboxed and bilinearly scaled to dw x dh the way the preview draws it
+    (tools/record/preview.cpp letterbox()), and a mask of the picture minus the red dot."""
+    import numpy as np
+    fh, fw = frame.shape[:2]
+    if dw * fh <= dh * fw:
+        rw, rh = dw, max(1, (dw * fh + fw // 2) // fw)
+    else:
+        rw, rh = max(1, (dh * fw + fh // 2) // fh), dh
+    x0, y0 = (dw - rw) // 2, (dh - rh) // 2
+    u = np.clip((np.arange(rw) + 0.5) * fw / rw - 0.5, 0, fw - 1)
+    v = np.clip((np.arange(rh) + 0.5) * fh / rh - 0.5, 0, fh - 1)
+    xa, ya = u.astype(int), v.astype(int)
+    xb, yb = np.minimum(xa + 1, fw - 1), np.minimum(ya + 1, fh - 1)
+    fx, fy = (u - xa)[None, :, None], (v - ya)[:, None, None]
+    f = frame.astype(float)
+    top = f[ya][:, xa] * (1 - fx) + f[ya][:, xb] * fx
+    bot = f[yb][:, xa] * (1 - fx) + f[yb][:, xb] * fx
+    want = np.zeros((dh, dw, 3))
+    want[y0:y0 + rh, x0:x0 + rw] = top * (1 - fy) + bot * fy
+    mask = np.zeros((dh, dw), bool)
+    mask[y0:y0 + rh, x0:x0 + rw] = True
+    dot = max(4, min(dw, dh) // 32)
+    mask[dot // 2:dot // 2 + dot, dot // 2:dot // 2 + dot] = False
+    return want, mask
+
+
+def check_preview_shows(out, dump_dir):
+    import numpy as np
+    m = json.load(open(os.path.join(out, "manifest.json")))
+    pv = m["preview"]
+    check(pv["opened"] and pv["shown"] > 0, "the preview showed frames: %s" % pv)
+    shown = read_png_rgb(os.path.join(dump_dir, "preview.png"))
+    frame = read_png_rgb(os.path.join(out, "frames", "%08u.png" % pv["last_sequence"]))
+    want, mask = expected_preview(frame, shown.shape[1], shown.shape[0])
+    diff = np.abs(shown - want)[mask]
+    check(frame.std() > 20, "the camera's frame has something to see (std %.1f)" % frame.std())
+    check(diff.mean() < 2.0 and np.percentile(diff, 99) < 24,
+          "the preview image is recorded frame %d, letterboxed to %dx%d (mean |diff| %.2f, p99 %.1f)" %
+          (pv["last_sequence"], shown.shape[1], shown.shape[0], diff.mean(), np.percentile(diff, 99)))
+    check((shown[~mask] [:, :].max(axis=1) > 0).sum() <= max(4, min(shown.shape[:2]) // 32) ** 2,
+          "only the red recording dot lies outside the picture")
+    return m
+
+
+def case_record_preview_headless():
+    out, dump = os.path.join(WORK, "clip"), os.path.join(WORK, "dump")
+    n = 20
+    p = record(out, "--size", "320x180", "--fps", "10", "-n", str(n), "--preview", "headless",
+               "--preview-size", "200x150", "--preview-dump", dump)
+    check(p.returncode == 0, "recording with a headless preview succeeds")
+    m = check_recording(out, True)
+    check(m["frame_count"] == n and m["dropped"]["count"] == 0, "all %d frames recorded, none dropped" % n)
+    check_preview_shows(out, dump)
+    check(re.search(r"preview on headless showed \d+ of %d frames" % n, p.stderr) is not None,
+          "the summary says what the preview showed")
+
+
+def case_record_preview_drm():
+    n = 10
+    env = {k: v for k, v in os.environ.items() if k != "DISPLAY"}
+    # Asked for: the vkms screen.
+    out, dump = os.path.join(WORK, "drm"), os.path.join(WORK, "drm_dump")
+    p = record(out, "--size", "320x180", "--fps", "10", "-n", str(n), "--preview", "drm",
+               "--preview-dump", dump, env=env)
+    check(p.returncode == 0, "recording with a DRM preview succeeds")
+    check("connector Virtual-1" in p.stderr and "preview: showing the recording on drm" in p.stderr,
+          "the preview opened on vkms' connector Virtual-1")
+    m = check_recording(out, True)
+    check(m["frame_count"] == n, "all %d frames recorded (%d dropped)" % (n, m["dropped"]["count"]))
+    check(m["preview"]["backend"] == "drm" and m["preview"]["width"] == 1024,
+          "manifest: preview on drm at the screen's 1024x768 mode: %s" % m["preview"])
+    check_preview_shows(out, dump)
+    # auto without $DISPLAY picks the same screen and says why.
+    out2 = os.path.join(WORK, "auto")
+    p = record(out2, "--size", "320x180", "--fps", "10", "-n", str(n), "--preview", "auto", env=env)
+    check(p.returncode == 0 and "auto: no $DISPLAY" in p.stderr and
+          json.load(open(os.path.join(out2, "manifest.json")))["preview"]["shown"] > 0,
+          "auto without $DISPLAY shows the recording on the DRM screen")
+    # The kiosk holds the screen: the preview steps aside, the recording is whole.
+    log_path = os.path.join(WORK, "kiosk.log")
+    with open(log_path, "w") as log:
+        kiosk = subprocess.Popen([CANDELA, "--display", "drm", "--test-pattern"], stdout=log,
+                                 stderr=subprocess.STDOUT)
+    try:
+        wait_for("the kiosk's modeset", lambda: "modeset" in open(log_path).read(), timeout=60)
+        out3 = os.path.join(WORK, "busy")
+        p = record(out3, "--size", "320x180", "--fps", "10", "-n", str(n), "--preview", "drm", env=env)
+    finally:
+        kiosk.terminate()
+        kiosk.wait(timeout=30)
+    check(p.returncode == 0, "recording succeeds while the kiosk holds the screen")
+    check(re.search(r"preview: cannot open drm \(.*\): recording without a preview", p.stderr) is not None,
+          "one clear line says the preview could not open")
+    m3 = check_recording(out3, True)
+    check(m3["frame_count"] == n and not m3["preview"]["opened"],
+          "all %d frames recorded, the manifest says no preview ran" % n)
 
 
 try:

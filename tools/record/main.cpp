@@ -3,6 +3,7 @@
 #include <csignal>
 #include <cstdio>
 
+#include "preview.h"
 #include "recorder.h"
 
 namespace {
@@ -18,7 +19,9 @@ int main(int argc, char** argv) {
       "`candela-tool ingest` reads (frames/*.png, info.txt, manifest.json).\n"
       "Exposure, gain and white balance are locked where the camera has them.\n"
       "Exit status: 0 done, 2 usage, 3 output folder not writable or full,\n"
-      "4 no usable camera, 5 the camera went away (frames so far are kept).",
+      "4 no usable camera, 5 the camera went away (frames so far are kept).\n"
+      "A live preview shows the frames being recorded when there is a display\n"
+      "(--preview); closing its window or pressing Esc/q stops the recording like Ctrl-C.",
       "candela-record"};
   std::string size;
   app.add_option("--device,-d", o.device, "V4L2 capture device")->capture_default_str();
@@ -47,6 +50,19 @@ int main(int argc, char** argv) {
   app.add_option("--writers", o.writers, "PNG writer threads")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
+  PreviewOptions po;
+  std::string preview_size;
+  app.add_option("--preview", po.mode,
+                 "Live preview: auto (a window if $DISPLAY is set, else the DRM screen if one is\n"
+                 "connected and free, else none), off, window, drm, headless")
+      ->check(CLI::IsMember({"auto", "off", "window", "drm", "headless"}))
+      ->capture_default_str();
+  app.add_option("--preview-size", preview_size,
+                 "Preview size WxH (default: the frame's size; DRM: the screen's mode)");
+  app.add_option("--preview-device", po.drm_device,
+                 "DRM card for the preview (default: the first with a free connected screen)");
+  app.add_option("--preview-dump", po.dump_dir,
+                 "Write the last preview image shown to DIR/preview.png at the end (tests)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -61,11 +77,25 @@ int main(int argc, char** argv) {
       return kExitUsage;
     }
   }
+  if (!preview_size.empty()) {
+    char extra = 0;
+    if (std::sscanf(preview_size.c_str(), "%dx%d%c", &po.width, &po.height, &extra) != 2 ||
+        po.width < 16 || po.height < 16 || po.width > 8192 || po.height > 8192) {
+      std::fprintf(stderr, "candela-record: --preview-size: expected WxH, e.g. 320x240, got '%s'\n",
+                   preview_size.c_str());
+      return kExitUsage;
+    }
+  }
   if (o.frames == 0 && o.seconds <= 0)
     std::fprintf(stderr, "candela-record: recording until Ctrl-C (no --frames or --seconds)\n");
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
-  const RecordResult r = record(o, g_stop);
+  // Closing the preview (window, Esc, q) ends the recording the way Ctrl-C does.
+  RecordPreview preview(po, [] { g_stop = true; });
+  const RecordResult r = record(o, g_stop, &preview);
+  preview.stop();
+  if (r.written || r.seconds > 0)
+    std::fprintf(stderr, "candela-record: %s\n", preview.summary().c_str());
   if (r.exit_code == kExitOk)
     std::fprintf(stderr,
                  "candela-record: %s: %llu frames in %.2f s (%.2f fps), %llu dropped -> %s\n",

@@ -153,7 +153,7 @@ std::vector<Locked> lock_controls(V4l2Capture& cap, const RecordOptions& o) {
 
 }  // namespace
 
-RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
+RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, FrameObserver* preview) {
   RecordResult res;
   using Clock = std::chrono::steady_clock;
   // --- the output folder --------------------------------------------------------
@@ -270,6 +270,8 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
       }
     });
 
+  if (preview) preview->start(f.width, f.height, channels);
+
   std::vector<uint32_t> dropped;  // capture thread only
   std::string end_reason;
   bool complete = false;
@@ -315,7 +317,8 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
         controls_json + "\n  },\n  \"frame_count\": " + std::to_string(n) + ",\n  \"frames\": [" +
         frames_json + "\n  ],\n  \"dropped\": {\"count\": " + std::to_string(dropped.size()) +
         ", \"sequences\": [" + dropped_json +
-        "]},\n  \"complete\": " + (final_write && complete ? "true" : "false") +
+        "]},\n  \"preview\": " + (preview ? preview->manifest_json() : "{\"mode\":\"off\"}") +
+        ",\n  \"complete\": " + (final_write && complete ? "true" : "false") +
         ",\n  \"end_reason\": " + json_string(final_write ? end_reason : "recording") + "\n}\n";
     if (final_write) unlink(reserve_path.c_str());
     write_atomic(manifest_path, text);
@@ -344,7 +347,8 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
   int silent = 0;
   for (;;) {
     if (stop.load()) {
-      end_reason = "stopped by a signal";
+      end_reason =
+          preview && preview->quit_requested() ? "stopped from the preview" : "stopped by a signal";
       complete = true;
       break;
     }
@@ -409,6 +413,7 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
     } else {
       slot->sequence = frame.sequence;
       slot->timestamp_ns = frame.timestamp_ns;
+      if (preview) preview->push(slot->pixels.data(), frame.sequence);
       std::lock_guard<std::mutex> lock(p.mutex);
       p.pending.push_back(slot);
       p.work.notify_one();
@@ -432,6 +437,7 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
     }
   }
   cap.reset();  // stop streaming before the (possibly long) writer drain
+  if (preview) preview->stop();
   {
     std::lock_guard<std::mutex> lock(p.mutex);
     p.closing = true;

@@ -30,6 +30,24 @@ struct RecordOptions {
   int writers = 2;  // PNG writer threads
 };
 
+// Something that watches the recorded frames as they go by (the live preview,
+// tools/record/preview.h). Kept abstract so the recorder links no GL.
+class FrameObserver {
+ public:
+  virtual ~FrameObserver() = default;
+  // The camera is open: frames will be width x height, 1 (gray) or 3 (RGB) channels.
+  virtual void start(int width, int height, int channels) = 0;
+  // One recorded frame (rows top to bottom, tightly packed). Must return at
+  // once: it copies or skips, never waits for the observer.
+  virtual void push(const uint8_t* pixels, uint32_t sequence) = 0;
+  // The recording is over: shows the last frame and stops the observer.
+  virtual void stop() = 0;
+  // True once the user asked to stop from it (window closed, Esc or q).
+  virtual bool quit_requested() const = 0;
+  // A JSON object for the manifest's "preview" key.
+  virtual std::string manifest_json() const = 0;
+};
+
 struct RecordResult {
   int exit_code = 0;    // 0 ok; see kExit*
   std::string message;  // the clear one-line reason the recording ended
@@ -43,7 +61,9 @@ inline constexpr int kExitOutput = 3;      // output folder cannot be written (r
 inline constexpr int kExitCamera = 4;      // no camera / cannot open / unusable format
 inline constexpr int kExitCameraLost = 5;  // the camera went away mid-recording
 
-// Runs until done or `stop` becomes true (a signal handler sets it).
-RecordResult record(const RecordOptions& options, const std::atomic<bool>& stop);
+// Runs until done or `stop` becomes true (a signal handler sets it). `preview`
+// (optional) sees every recorded frame; it can neither stop nor slow the recording.
+RecordResult record(const RecordOptions& options, const std::atomic<bool>& stop,
+                    FrameObserver* preview = nullptr);
 
 }  // namespace candela::record
