@@ -515,8 +515,9 @@ def case_record_preview_drm():
         kiosk.terminate()
         kiosk.wait(timeout=30)
     check(p.returncode == 0, "recording succeeds while the kiosk holds the screen")
-    check(re.search(r"preview: cannot open drm \(.*\): recording without a preview", p.stderr) is not None,
-          "one clear line says the preview could not open")
+    line = [l for l in p.stderr.splitlines() if "preview: cannot open drm" in l]
+    check(len(line) == 1 and "DRM master" in line[0] and line[0].endswith("recording without a preview"),
+          "one clear line says the preview could not open: %s" % line)
     m3 = check_recording(out3, True)
     check(m3["frame_count"] == n and not m3["preview"]["opened"],
           "all %d frames recorded, the manifest says no preview ran" % n)

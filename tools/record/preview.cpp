@@ -36,6 +36,22 @@ std::string json_escape(const std::string& s) {
   return out + "\"";
 }
 
+// Backends explain themselves over several lines (one per card tried); the
+// preview's log line and manifest entry keep it to one.
+std::string one_line(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\n') {
+      while (!out.empty() && out.back() == ' ') out.pop_back();
+      if (!out.empty() && out.back() != ':') out += ';';
+      out += ' ';
+    } else if (c != ' ' || out.empty() || out.back() != ' ') {
+      out += c;
+    }
+  }
+  return out;
+}
+
 // The preview ignores the emulator's wind keys; only "quit" matters to it.
 struct IgnoreKeys final : DisplayEvents {
   void on_key(Key) override {}
@@ -192,7 +208,7 @@ void RecordPreview::run() {
       display = open_display(d);
       break;
     } catch (const std::exception& e) {
-      why_not += (why_not.empty() ? "" : "; ") + std::string(e.what());
+      why_not += (why_not.empty() ? "" : "; ") + one_line(e.what());
     }
   }
   if (!display) {
@@ -289,8 +305,8 @@ void RecordPreview::run() {
     display->finish();
   } catch (const std::exception& e) {
     accepting_ = false;
-    LOG_WARN("preview: stopped (%s): the recording goes on without it", e.what());
-    set_state(State::kFailed, "", e.what());
+    LOG_WARN("preview: stopped (%s): the recording goes on without it", one_line(e.what()).c_str());
+    set_state(State::kFailed, "", one_line(e.what()));
   }
   if (!options_.dump_dir.empty() && dump_w > 0) {
     std::vector<uint8_t> rgb(static_cast<size_t>(dump_w) * dump_h * 3);
