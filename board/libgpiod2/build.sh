@@ -8,12 +8,14 @@
 #
 # Result: CACHE_DIR/libgpiod-prefix/{include/gpiod.h,lib/libgpiod.so.3,
 # lib/pkgconfig/libgpiod.pc}; its path is the last line printed on stdout.
-# Use it with PKG_CONFIG_PATH=CACHE_DIR/libgpiod-prefix/lib/pkgconfig.
+# Configure Candela with -DCMAKE_PREFIX_PATH=that path (or PKG_CONFIG_PATH=
+# path/lib/pkgconfig); the binaries find libgpiod.so.3 there by RUNPATH.
 #
 # The version is whatever trixie carries today (read from its Sources index,
 # never hard-coded). Everything downloaded is verified before use:
-#   InRelease  -- OpenPGP signature, gpgv against debian-archive-keyring
-#                 (bookworm's keyring already holds the trixie keys);
+#   InRelease  -- OpenPGP signatures, gpgv against debian-archive-keyring
+#                 (bookworm's keyring already holds the trixie keys): one
+#                 good signature and no bad one, as apt requires;
 #   Sources.xz -- sha256 and size from the verified Release text;
 #   .orig.tar  -- sha256 and size from the verified Sources entry.
 # Debian's own patches (debian.tar.xz) only touch the documentation today, so
@@ -66,9 +68,19 @@ reuse_or_die() {
 # --- 1. the signed Release text -------------------------------------------------
 fetch "$mirror/dists/$suite/InRelease" "$dl/InRelease" ||
   reuse_or_die "cannot download $mirror/dists/$suite/InRelease (no network?)"
-gpgv --keyring "$keyring" --output "$dl/Release.verified" "$dl/InRelease" 2>"$dl/gpgv.log" ||
+# As apt does: at least one good signature by a key in the keyring and no bad
+# one. (InRelease carries several; gpgv exits non-zero when any key is unknown,
+# e.g. a newer release key than this keyring has, so its status lines decide.)
+rm -f "$dl/Release.verified"
+gpgv --status-fd 3 --keyring "$keyring" --output "$dl/Release.verified" "$dl/InRelease" \
+  3>"$dl/gpgv.status" 2>"$dl/gpgv.log" || true
+if ! grep -q '^\[GNUPG:\] VALIDSIG ' "$dl/gpgv.status" ||
+  grep -qE '^\[GNUPG:\] (BADSIG|EXPKEYSIG|REVKEYSIG) ' "$dl/gpgv.status" ||
+  [ ! -s "$dl/Release.verified" ]; then
+  rm -f "$dl/Release.verified"
   die "the signature of $suite's InRelease does not verify against $keyring:
 $(cat "$dl/gpgv.log")"
+fi
 # Only the verified text is read from here on, never InRelease itself.
 
 # --- 2. the source index ----------------------------------------------------------
