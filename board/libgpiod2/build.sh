@@ -86,7 +86,7 @@ fi
 # --- 2. the source index ----------------------------------------------------------
 # The SHA256 section of Release: " <sha256> <size> main/source/Sources.xz".
 read -r idx_sha idx_size < <(awk '/^SHA256:/{s=1; next} /^[^ ]/{s=0}
-  s && $3 == "main/source/Sources.xz" {print $1, $2}' "$dl/Release.verified")
+  s && $3 == "main/source/Sources.xz" {print $1, $2}' "$dl/Release.verified") || true
 [ -n "${idx_sha:-}" ] || die "$suite's Release lists no sha256 for main/source/Sources.xz"
 if ! echo "$idx_sha  $dl/Sources.xz" | sha256sum -c --status 2>/dev/null; then
   fetch "$mirror/dists/$suite/main/source/Sources.xz" "$dl/Sources.xz" ||
@@ -105,8 +105,8 @@ version=$(sed -n 's/^Version: //p' <<<"$entry")
 directory=$(sed -n 's/^Directory: //p' <<<"$entry")
 # The Checksums-Sha256 line of the upstream tarball: " <sha256> <size> <name>.orig.tar.<ext>".
 read -r tar_sha tar_size tar_name < <(awk '/^Checksums-Sha256:/{s=1; next} /^[^ ]/{s=0}
-  s && $3 ~ /\.orig\.tar\.(xz|gz|bz2)$/ {print $1, $2, $3}' <<<"$entry")
-[ -n "${tar_sha:-}" ] && [ -n "$directory" ] ||
+  s && $3 ~ /\.orig\.tar\.(xz|gz|bz2)$/ {print $1, $2, $3}' <<<"$entry") || true
+{ [ -n "${tar_sha:-}" ] && [ -n "$directory" ]; } ||
   die "$suite's entry for $package has no .orig tarball with a sha256:
 $entry"
 say "$suite has $package $version ($tar_name)"
