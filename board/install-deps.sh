@@ -27,6 +27,8 @@ tests=(
   # virtual board (board/virtual): QEMU + Debian kernel + out-of-tree drivers
   qemu-system-x86 busybox-static cpio kmod gzip xz-utils bc flex bison libelf-dev
   v4l-utils libdrm-tests
+  # libgpiod 2 check (board/libgpiod2/build.sh): Debian 13's source, verified
+  curl gpgv debian-archive-keyring
 )
 
 want=("${runtime[@]}")

@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "input/gpio_line.h"
+
 namespace candela {
 
 int parse_options(int argc, char** argv, Options& o) {
@@ -11,7 +13,8 @@ int parse_options(int argc, char** argv, Options& o) {
       "With no options it shows the built-in scene on the best display it finds\n"
       "(DRM/KMS, then a desktop window, then headless).",
       "candela"};
-  app.set_version_flag("--version", "candela 0.1.0");
+  // Also names the GPIO library: which libgpiod API this build was made for.
+  app.set_version_flag("--version", "candela 0.1.0\n" + gpio_library_version());
   std::string size;
   app.add_option("--scene", o.scene, "Scene file (TOML); default: the built-in scene")
       ->check(CLI::ExistingFile);

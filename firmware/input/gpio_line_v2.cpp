@@ -1,5 +1,7 @@
 // libgpiod 2.x (v2 API, Debian 13). The v1 counterpart is gpio_line_v1.cpp.
-// Not compiled on Debian 12 (libgpiod 1.6); CMake picks the file by version.
+// CMake picks the file by version. On Debian 12 (libgpiod 1.6) tests/run-all.sh
+// still builds it, against trixie's libgpiod (board/libgpiod2/build.sh), and
+// runs the gpio virtual-board tests on it.
 #include <dirent.h>
 #include <fcntl.h>
 #include <gpiod.h>
@@ -14,39 +16,45 @@
 namespace candela {
 namespace {
 
-std::string chip_label(gpiod_chip* chip) {
+// What gpiod_chip_info says about a chip, copied out (the info is freed here).
+struct ChipInfo {
+  std::string name;   // gpiochipN
+  std::string label;  // e.g. "pinctrl-rp1", "vboard-gpio"
+  size_t num_lines = 0;
+};
+
+ChipInfo chip_info(gpiod_chip* chip) {
+  ChipInfo out;
   gpiod_chip_info* info = gpiod_chip_get_info(chip);
-  if (!info) return {};
-  std::string label = gpiod_chip_info_get_label(info);
+  if (!info) return out;
+  out.name = gpiod_chip_info_get_name(info);
+  out.label = gpiod_chip_info_get_label(info);
+  out.num_lines = gpiod_chip_info_get_num_lines(info);
   gpiod_chip_info_free(info);
-  return label;
+  return out;
 }
 
-// v2 opens chips by path only: accept a path, a name (gpiochipN), a number or a label.
-gpiod_chip* open_chip(const std::string& what, std::string& path) {
-  if (what.rfind("/dev/", 0) == 0) {
-    path = what;
-    return gpiod_chip_open(path.c_str());
+// v2 opens chips by path only; like v1's gpiod_chip_open_lookup, accept a
+// path, a name (gpiochipN), a number or a label.
+gpiod_chip* open_chip(const std::string& what) {
+  if (what.empty()) {
+    errno = ENOENT;
+    return nullptr;
   }
-  if (!what.empty() && what.find_first_not_of("0123456789") == std::string::npos) {
-    path = "/dev/gpiochip" + what;
-    return gpiod_chip_open(path.c_str());
-  }
-  if (what.rfind("gpiochip", 0) == 0) {
-    path = "/dev/" + what;
-    if (gpiod_chip* c = gpiod_chip_open(path.c_str())) return c;
-  }
+  if (what[0] == '/') return gpiod_chip_open(what.c_str());
+  if (what.find_first_not_of("0123456789") == std::string::npos)
+    return gpiod_chip_open(("/dev/gpiochip" + what).c_str());
+  if (what.rfind("gpiochip", 0) == 0)
+    if (gpiod_chip* c = gpiod_chip_open(("/dev/" + what).c_str())) return c;
   DIR* dir = opendir("/dev");
   if (!dir) return nullptr;
   gpiod_chip* found = nullptr;
   while (dirent* e = readdir(dir)) {
     if (std::strncmp(e->d_name, "gpiochip", 8) != 0) continue;
-    const std::string p = std::string("/dev/") + e->d_name;
-    gpiod_chip* c = gpiod_chip_open(p.c_str());
+    gpiod_chip* c = gpiod_chip_open((std::string("/dev/") + e->d_name).c_str());
     if (!c) continue;
-    if (chip_label(c) == what) {
+    if (chip_info(c).label == what) {
       found = c;
-      path = p;
       break;
     }
     gpiod_chip_close(c);
@@ -101,11 +109,12 @@ class GpioLineV2 final : public GpioLine {
 }  // namespace
 
 std::unique_ptr<GpioLine> open_gpio_line(const InputSpec& spec, const char* consumer) {
-  std::string path;
-  gpiod_chip* chip = open_chip(spec.chip, path);
+  gpiod_chip* chip = open_chip(spec.chip);
   if (!chip)
     throw RuntimeError("GPIO chip \"" + spec.chip + "\" not found (" + std::strerror(errno) + ")");
-  const std::string chip_desc = path + " [" + chip_label(chip) + "]";
+  // Described as v1 describes it: "gpiochip0 [vboard-gpio]".
+  const ChipInfo ci = chip_info(chip);
+  const std::string chip_desc = ci.name + " [" + ci.label + "]";
   int offset = spec.line_offset;
   if (!spec.line_name.empty())
     offset = gpiod_chip_get_line_offset_from_name(chip, spec.line_name.c_str());
@@ -115,7 +124,8 @@ std::unique_ptr<GpioLine> open_gpio_line(const InputSpec& spec, const char* cons
     const std::string what = spec.line_name.empty() ? "offset " + std::to_string(spec.line_offset)
                                                     : "named \"" + spec.line_name + "\"";
     gpiod_chip_close(chip);
-    throw RuntimeError("GPIO " + chip_desc + " has no line " + what);
+    throw RuntimeError("GPIO " + chip_desc + " has no line " + what + " (it has " +
+                       std::to_string(ci.num_lines) + " lines)");
   }
   const char* name = gpiod_line_info_get_name(info);
   const std::string desc = chip_desc + " line " + std::to_string(offset) +
@@ -141,7 +151,9 @@ std::unique_ptr<GpioLine> open_gpio_line(const InputSpec& spec, const char* cons
       gpiod_line_settings_set_bias(settings, GPIOD_LINE_BIAS_PULL_DOWN);
       break;
   }
-  // Debounce stays in software (sensor_logic) so v1 and v2 boards behave alike.
+  // No kernel debounce (debounce_period_us): v1 has none, and sensor_logic's
+  // debouncer needs the raw edges to date a press from its first edge; both
+  // together would also make a press wait twice. So v1 and v2 boards agree.
   gpiod_line_config* line_cfg = gpiod_line_config_new();
   const unsigned off = static_cast<unsigned>(offset);
   gpiod_line_config_add_line_settings(line_cfg, &off, 1, settings);
@@ -153,8 +165,15 @@ std::unique_ptr<GpioLine> open_gpio_line(const InputSpec& spec, const char* cons
   gpiod_line_config_free(line_cfg);
   gpiod_line_settings_free(settings);
   if (!req) {
+    // Name who holds the line, as v1 does, when that is why.
+    std::string user;
+    if (gpiod_line_info* now = gpiod_chip_get_line_info(chip, off)) {
+      if (const char* c = gpiod_line_info_get_consumer(now); c && gpiod_line_info_is_used(now))
+        user = std::string(" (in use by \"") + c + "\")";
+      gpiod_line_info_free(now);
+    }
     gpiod_chip_close(chip);
-    throw RuntimeError("GPIO " + desc + ": request refused: " + std::strerror(err));
+    throw RuntimeError("GPIO " + desc + ": request refused: " + std::strerror(err) + user);
   }
   return std::make_unique<GpioLineV2>(chip, req, off, desc);
 }
