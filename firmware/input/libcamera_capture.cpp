@@ -3,6 +3,7 @@
 // next() sleeps in poll() on that and the caller's wake fd, like V4L2.
 #include "input/libcamera_capture.h"
 
+#include <dirent.h>
 #include <libcamera/libcamera.h>
 #include <linux/videodev2.h>
 #include <poll.h>
@@ -136,7 +137,9 @@ class LibcameraCapture final : public VideoCapture {
   std::mutex mutex_;
   std::vector<lc::Request*> done_;
   size_t done_head_ = 0, done_count_ = 0;
-  std::atomic<bool> gone_{false};
+  std::atomic<bool> gone_{false};  // lost: unplugged, or a request could not be queued
+  std::atomic<bool> disconnected_{false};
+  bool stalled_ = false;  // the last next() timed out  // libcamera says so (Camera::disconnected)
   lc::ControlList pending_controls_;  // applied to the next request queued
   lc::ControlList last_metadata_;     // of the first frame handed out
   bool metadata_seen_ = false;
@@ -259,6 +262,11 @@ LibcameraCapture::LibcameraCapture(const CaptureSettings& s) {
       const int64_t us = 1'000'000 / s.fps;
       start_controls.set(lc::controls::FrameDurationLimits, lc::Span<const int64_t, 2>({us, us}));
       format_.fps = s.fps;
+    } else if (s.fps > 0) {
+      LOG_INFO(
+          "libcamera: camera \"%s\" offers no FrameDurationLimits: it runs at its own rate, "
+          "not %d fps",
+          id_.c_str(), s.fps);
     }
     if (const int r = camera_->start(&start_controls); r < 0)
       throw RuntimeError("libcamera: camera \"" + id_ + "\": cannot start: " + std::strerror(-r));
@@ -272,9 +280,51 @@ LibcameraCapture::LibcameraCapture(const CaptureSettings& s) {
   }
 }
 
+// Whether this process holds a video or media device node that is gone from
+// /dev: the kernel unregistered it (unplugged, driver unbound) while the fd
+// stayed open, and the fd's link then reads "/dev/video6 (deleted)".
+bool holds_deleted_camera_node() {
+  DIR* d = opendir("/proc/self/fd");
+  if (!d) return false;
+  bool deleted = false;
+  while (dirent* e = readdir(d)) {
+    char target[256];
+    const std::string link = std::string("/proc/self/fd/") + e->d_name;
+    const ssize_t n = readlink(link.c_str(), target, sizeof target - 1);
+    if (n <= 0) continue;
+    target[n] = 0;
+    if ((std::strncmp(target, "/dev/video", 10) == 0 ||
+         std::strncmp(target, "/dev/media", 10) == 0) &&
+        std::strstr(target, " (deleted)"))
+      deleted = true;
+  }
+  closedir(d);
+  return deleted;
+}
+
 void LibcameraCapture::close_all() {
+  if (camera_ && started_ && !disconnected_ && (gone_ || stalled_) && holds_deleted_camera_node()) {
+    // The camera went away but libcamera has not noticed (no udev event
+    // reached it). Stopping it now trips an assertion in libcamera 0.0.3
+    // (requests still queued in a pipeline whose STREAMOFF failed) that
+    // aborts the process: leave its objects be instead; the frames recorded
+    // so far matter more than a few leaked handles.
+    LOG_WARN("libcamera: camera \"%s\" is gone but libcamera was not told; leaving it unstopped",
+             id_.c_str());
+    if (connected_) {
+      camera_->requestCompleted.disconnect(this, &LibcameraCapture::on_completed);
+      camera_->disconnected.disconnect(this, &LibcameraCapture::on_disconnected);
+    }
+    for (auto& r : requests_) (void)r.release();
+    requests_.clear();
+    (void)allocator_.release();
+    (void)config_.release();
+    (void)new std::shared_ptr<lc::Camera>(std::move(camera_));
+    (void)new std::shared_ptr<lc::CameraManager>(manager_);  // never destroyed under it
+    started_ = acquired_ = connected_ = false;
+  }
   if (camera_) {
-    if (started_) camera_->stop();  // completes every pending request (cancelled)
+    if (started_ && !disconnected_) camera_->stop();  // completes every pending request (cancelled)
     started_ = false;
     if (connected_) {
       camera_->requestCompleted.disconnect(this, &LibcameraCapture::on_completed);
@@ -317,6 +367,7 @@ void LibcameraCapture::on_completed(lc::Request* request) {
 
 // libcamera's thread: the camera was unplugged (udev saw it go).
 void LibcameraCapture::on_disconnected() {
+  disconnected_ = true;
   gone_ = true;
   notify();
 }
@@ -353,6 +404,7 @@ VideoCapture::Result LibcameraCapture::next(VideoFrame& frame, int timeout_ms, i
       }
     }
     if (request) {
+      stalled_ = false;
       const uint64_t i = request->cookie();
       lc::FrameBuffer* fb = request->findBuffer(stream_);
       if (i >= mappings_.size() || !fb) {
@@ -377,7 +429,10 @@ VideoCapture::Result LibcameraCapture::next(VideoFrame& frame, int timeout_ms, i
       error_ = "the camera was unplugged (libcamera: \"" + id_ + "\" disconnected)";
       return Result::kGone;
     }
-    if (r == 0 || !fds[0].revents) return Result::kTimeout;
+    if (r == 0 || !fds[0].revents) {
+      stalled_ = true;  // cleared by the next frame
+      return Result::kTimeout;
+    }
   }
 }
 

@@ -126,7 +126,14 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop) {
   const fs::path out(o.out);
   const std::string frames_dir = (out / "frames").string();
   const std::string manifest_path = (out / "manifest.json").string();
-  if (fs::exists(manifest_path)) {
+  std::error_code exists_error;
+  const bool exists = fs::exists(manifest_path, exists_error);
+  if (exists_error) {  // e.g. a parent folder this user may not enter
+    res.exit_code = kExitOutput;
+    res.message = "cannot use " + o.out + ": " + exists_error.message();
+    return res;
+  }
+  if (exists) {
     res.exit_code = kExitOutput;
     res.message = o.out + " already holds a recording (manifest.json); choose another folder";
     return res;
