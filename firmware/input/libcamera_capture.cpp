@@ -315,12 +315,23 @@ void LibcameraCapture::close_all() {
       camera_->requestCompleted.disconnect(this, &LibcameraCapture::on_completed);
       camera_->disconnected.disconnect(this, &LibcameraCapture::on_disconnected);
     }
-    for (auto& r : requests_) (void)r.release();
+    // Kept for the life of the process (reachable, never destroyed: even at
+    // exit, tearing these down would reach the same assertion).
+    struct Abandoned {
+      std::vector<std::unique_ptr<lc::Request>> requests;
+      std::unique_ptr<lc::FrameBufferAllocator> allocator;
+      std::unique_ptr<lc::CameraConfiguration> config;
+      std::shared_ptr<lc::Camera> camera;
+      std::shared_ptr<lc::CameraManager> manager;
+    };
+    static std::mutex abandoned_mutex;
+    static auto* abandoned = new std::vector<Abandoned>;
+    {
+      std::lock_guard<std::mutex> lock(abandoned_mutex);
+      abandoned->push_back({std::move(requests_), std::move(allocator_), std::move(config_),
+                            std::move(camera_), manager_});
+    }
     requests_.clear();
-    (void)allocator_.release();
-    (void)config_.release();
-    (void)new std::shared_ptr<lc::Camera>(std::move(camera_));
-    (void)new std::shared_ptr<lc::CameraManager>(manager_);  // never destroyed under it
     started_ = acquired_ = connected_ = false;
   }
   if (camera_) {
