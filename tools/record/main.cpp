@@ -44,8 +44,9 @@ int main(int argc, char** argv) {
   app.add_flag("--color", o.color, "Write RGB PNGs (default: gray luma, like the flame footage)");
   app.add_flag("--keep-auto", o.keep_auto, "Leave auto exposure/gain/white balance alone");
   app.add_option("--exposure", o.exposure,
-                 "Manual exposure (the camera's units; default: current)");
-  app.add_option("--gain", o.gain, "Manual gain (default: current)");
+                 "Manual exposure (V4L2: the camera's units; libcamera: microseconds; default: "
+                 "current)");
+  app.add_option("--gain", o.gain, "Manual gain (libcamera: AnalogueGain; default: current)");
   app.add_option("--white-balance", o.white_balance,
                  "White balance temperature in K (default: current)");
   app.add_option("--queue", o.queue, "Frames buffered for the PNG writers")
