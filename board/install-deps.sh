@@ -12,6 +12,7 @@ export DEBIAN_FRONTEND=noninteractive
 runtime=(
   libegl1 libgles2 libgbm1 libdrm2 libpng16-16 libfftw3-single3
   libegl-mesa0 libgl1-mesa-dri libgpiod2 libx11-6
+  libcamera-ipa  # pulls in the libcamera library of the release (0.0.3 on bookworm)
 )
 build=(
   build-essential cmake ninja-build pkg-config clang-format
@@ -21,6 +22,7 @@ build=(
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev zlib1g-dev
+  libcamera-dev
 )
 tests=(
   ffmpeg python3 python3-numpy xvfb xauth
@@ -29,6 +31,8 @@ tests=(
   v4l-utils libdrm-tests
   # libgpiod 2 check (board/libgpiod2/build.sh): Debian 13's source, verified
   curl gpgv debian-archive-keyring
+  # libcamera on the board's vimc: `cam`, and udevd (libcamera enumerates through udev)
+  libcamera-tools udev
 )
 
 want=("${runtime[@]}")

@@ -12,6 +12,7 @@
 #include "core/log.h"
 #include "input/motion_wind.h"
 #include "input/v4l2_capture.h"
+#include "input/video_capture.h"
 
 namespace candela {
 
@@ -84,39 +85,36 @@ bool CameraSource::wait(int ms) {
 }
 
 void CameraSource::run() {
-  if (spec_.backend == "libcamera") {
-    set_status("the libcamera backend is not built into this candela; use backend = \"v4l2\"",
-               true);
+  if (spec_.backend == "libcamera" && !libcamera_available()) {
+    set_status(
+        "the libcamera backend is not built into this candela (libcamera-dev was "
+        "missing at build time); use backend = \"v4l2\"",
+        true);
     return;
   }
   for (;;) {
-    std::string dev = spec_.device;
-    if (dev == "auto") {
-      const auto found = find_capture_devices();
-      if (found.empty()) {
-        set_status("no camera found (no V4L2 capture device in /dev)", true);
-        if (wait(kRetryMs)) return;
-        continue;
-      }
-      dev = found.front();
-    }
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      device_ = dev;
+      device_ = spec_.device;  // until the camera says which it is
     }
-    std::unique_ptr<V4l2Capture> cap;
+    std::unique_ptr<VideoCapture> cap;
     try {
-      V4l2Capture::Settings s;
-      s.device = dev;
+      CaptureSettings s;
+      s.device = spec_.device;
       s.width = spec_.width;
       s.height = spec_.height;
       s.fps = spec_.fps;
       s.buffers = 4;
-      cap = std::make_unique<V4l2Capture>(s);
+      cap = open_video_capture(spec_.backend, s);
     } catch (const std::exception& e) {
       set_status(e.what(), true);
       if (wait(kRetryMs)) return;
       continue;
+    }
+    const std::string dev = cap->device();
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      device_ = dev;
     }
     const V4l2Format f = cap->format();
     // Work on about the configured size: the largest whole factor that keeps it.
@@ -126,22 +124,21 @@ void CameraSource::run() {
         small(static_cast<size_t>(ww) * wh);
     MotionDetector detector(ww, wh);
     CameraWindLogic logic(spec_, source_, wind_);
-    LOG_INFO("input \"%s\" (camera): %s (%s) %dx%d %s at %.1f fps, motion on %dx%d",
-             spec_.name.c_str(), dev.c_str(), cap->card().c_str(), f.width, f.height,
-             fourcc_name(f.fourcc).c_str(), f.fps, ww, wh);
+    LOG_INFO("input \"%s\" (camera): %s %dx%d %s at %.1f fps, motion on %dx%d", spec_.name.c_str(),
+             cap->name().c_str(), f.width, f.height, fourcc_name(f.fourcc).c_str(), f.fps, ww, wh);
     set_status("ok", false);
     int64_t cpu0 = thread_cpu_ns(), wall0 = monotonic_ns();
     uint64_t frames0 = frames_.load();
     int silent_ms = 0;
     for (;;) {
-      V4l2Frame frame;
+      VideoFrame frame;
       const auto r = cap->next(frame, 1000, wake_fd_);
-      if (r == V4l2Capture::Result::kWoken) return;
-      if (r == V4l2Capture::Result::kGone) {
+      if (r == VideoCapture::Result::kWoken) return;
+      if (r == VideoCapture::Result::kGone) {
         set_status(dev + ": " + cap->error(), true);
         break;
       }
-      if (r == V4l2Capture::Result::kTimeout) {
+      if (r == VideoCapture::Result::kTimeout) {
         silent_ms += 1000;
         if (silent_ms >= 5000) {  // streaming but silent: reopen it
           set_status(dev + ": no frames for 5 s", true);

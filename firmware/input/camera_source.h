@@ -1,7 +1,7 @@
-// The camera input's thread: opens the camera (V4L2; "auto" takes the first
-// capture device), turns frames into small gray images, finds motion and
-// emits gusts. An absent, busy or unplugged camera is logged once per reason
-// and retried every few seconds; the display never waits for it.
+// The camera input's thread: opens the camera (open_video_capture: V4L2 or
+// libcamera, by the input's `backend`; device "auto" takes the first camera), turns frames into
+// small gray images, finds motion and emits gusts. An absent, busy or unplugged camera is logged
+// once per reason and retried every few seconds; the display never waits for it.
 #pragma once
 
 #include <atomic>

@@ -113,11 +113,26 @@ std::vector<InputSpec> parse_inputs(const toml::node* node, const std::string& f
         s.window_s = r.number("window_s", 2.0, 0.2, 60);
         break;
       case InputSpec::Kind::kCamera:
-        s.device = r.string("device", "auto");
-        if (s.device != "auto" && s.device.rfind("/dev/", 0) != 0)
-          r.fail("device",
-                 "expected \"auto\" or a device path like /dev/video0, got \"" + s.device + "\"");
         s.backend = r.string("backend", "auto", {"auto", "v4l2", "libcamera"});
+        s.device = r.string("device", "auto");
+        // V4L2 takes /dev/videoN; libcamera a camera id as `cam -l` lists it
+        // (e.g. "/base/soc/i2c0mux/i2c@1/imx708@1a" on a Pi); auto either.
+        if (s.device.empty())
+          r.fail("device",
+                 "expected \"auto\", a device path like /dev/video0 or a libcamera "
+                 "camera id, got an empty string");
+        if (s.device.rfind("video", 0) == 0)  // a V4L2 node without its /dev/
+          r.fail("device", "expected a device path like /dev/video0, got \"" + s.device + "\"");
+        if (s.backend == "v4l2" && s.device != "auto" && s.device.rfind("/dev/", 0) != 0)
+          r.fail("device",
+                 "expected \"auto\" or a device path like /dev/video0 for backend "
+                 "\"v4l2\", got \"" +
+                     s.device + "\"");
+        if (s.backend == "libcamera" && s.device.rfind("/dev/video", 0) == 0)
+          r.fail("device",
+                 "expected \"auto\" or a libcamera camera id (see `cam -l`) for "
+                 "backend \"libcamera\", got the V4L2 node \"" +
+                     s.device + "\"");
         s.width = static_cast<int>(r.integer("width", 160, 32, 1920));
         s.height = static_cast<int>(r.integer("height", 120, 24, 1080));
         s.fps = static_cast<int>(r.integer("fps", 15, 1, 120));

@@ -189,7 +189,7 @@ void V4l2Capture::close_all() {
   fd_ = -1;
 }
 
-V4l2Capture::Result V4l2Capture::next(V4l2Frame& frame, int timeout_ms, int wake_fd) {
+V4l2Capture::Result V4l2Capture::next(VideoFrame& frame, int timeout_ms, int wake_fd) {
   pollfd fds[2] = {{fd_, POLLIN, 0}, {wake_fd, POLLIN, 0}};
   int r;
   do r = poll(fds, wake_fd >= 0 ? 2 : 1, timeout_ms);
@@ -230,7 +230,7 @@ V4l2Capture::Result V4l2Capture::next(V4l2Frame& frame, int timeout_ms, int wake
   return Result::kFrame;
 }
 
-void V4l2Capture::release(const V4l2Frame& frame) {
+void V4l2Capture::release(const VideoFrame& frame) {
   if (frame.index < 0 || fd_ < 0) return;
   v4l2_buffer b{};
   b.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
@@ -239,7 +239,7 @@ void V4l2Capture::release(const V4l2Frame& frame) {
   xioctl(fd_, VIDIOC_QBUF, &b);  // a failure shows up as kGone on the next DQBUF
 }
 
-std::vector<V4l2Control> V4l2Capture::controls() {
+std::vector<V4l2Control> V4l2Capture::v4l2_controls() {
   std::vector<V4l2Control> out;
   v4l2_queryctrl q{};
   q.id = V4L2_CTRL_FLAG_NEXT_CTRL;
@@ -296,6 +296,43 @@ bool V4l2Capture::set_control(uint32_t id, int64_t value, std::string& why) {
     return false;
   }
   return true;
+}
+
+std::vector<CaptureControl> V4l2Capture::controls() {
+  std::vector<CaptureControl> out;
+  for (const V4l2Control& c : v4l2_controls())
+    out.push_back({c.id, c.name, std::to_string(c.value), std::to_string(c.default_value)});
+  return out;
+}
+
+std::vector<LockedControl> V4l2Capture::lock_auto(const AutoLockRequest& o) {
+  std::vector<LockedControl> out;
+  auto set = [&](uint32_t id, int64_t v, const char* name, const std::string& what) {
+    std::string why;
+    out.push_back({name, set_control(id, v, why) ? what : "not set: " + why});
+  };
+  auto keep = [&](uint32_t id, int64_t v, const char* name) {
+    if (v >= 0) {
+      set(id, v, name, "set to " + std::to_string(v));
+    } else if (auto cur = get_control(id)) {
+      out.push_back({name, "kept at " + std::to_string(*cur)});
+    } else {
+      out.push_back({name, "not offered"});
+    }
+  };
+  if (o.keep_auto) {
+    out.push_back({"auto controls", "left as they were (--keep-auto)"});
+    return out;
+  }
+  // Everything manual, at the values now in use.
+  set(V4L2_CID_EXPOSURE_AUTO, V4L2_EXPOSURE_MANUAL, "exposure_auto", "manual");
+  set(V4L2_CID_EXPOSURE_AUTO_PRIORITY, 0, "exposure_auto_priority", "off (constant frame rate)");
+  keep(V4L2_CID_EXPOSURE_ABSOLUTE, o.exposure, "exposure_time_absolute");
+  set(V4L2_CID_AUTOGAIN, 0, "gain_automatic", "off");
+  keep(V4L2_CID_GAIN, o.gain, "gain");
+  set(V4L2_CID_AUTO_WHITE_BALANCE, 0, "white_balance_automatic", "off");
+  keep(V4L2_CID_WHITE_BALANCE_TEMPERATURE, o.white_balance, "white_balance_temperature");
+  return out;
 }
 
 std::vector<std::string> find_capture_devices() {

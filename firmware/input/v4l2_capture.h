@@ -1,7 +1,7 @@
 // Plain V4L2 video capture (USB webcams, vivid): mmap streaming with a poll
 // timeout, so a dead camera cannot hang the caller; EINTR retried; the
-// driver's bytesperline/sizeimage sanitised. Shared by the runtime's camera
-// input and candela-record (library candela_v4l2: no GL, no Eigen).
+// driver's bytesperline/sizeimage sanitised. One VideoCapture backend (see
+// video_capture.h); the frame conversions below serve every backend.
 #pragma once
 
 #include <cstddef>
@@ -10,26 +10,16 @@
 #include <string>
 #include <vector>
 
+#include "input/video_capture.h"
+
 namespace candela {
 
-struct V4l2Format {
-  uint32_t fourcc = 0;
-  int width = 0, height = 0;
-  int bytesperline = 0;
-  size_t sizeimage = 0;
-  double fps = 0;  // 0: the driver does not say
-};
+using V4l2Format = VideoFormat;
 std::string fourcc_name(uint32_t fourcc);
 // "YUYV" -> fourcc; 0 for anything but 4 characters.
 uint32_t fourcc_from_name(const std::string& name);
 
-struct V4l2Frame {
-  const uint8_t* data = nullptr;
-  size_t bytes = 0;
-  uint32_t sequence = 0;
-  int64_t timestamp_ns = 0;  // the driver's (CLOCK_MONOTONIC for nearly all)
-  int index = -1;            // buffer to hand back with release()
-};
+using V4l2Frame = VideoFrame;
 
 struct V4l2Control {
   uint32_t id = 0;
@@ -40,15 +30,9 @@ struct V4l2Control {
   bool read_only = false, inactive = false;
 };
 
-class V4l2Capture {
+class V4l2Capture final : public VideoCapture {
  public:
-  struct Settings {
-    std::string device;  // /dev/videoN
-    int width = 640, height = 480;
-    uint32_t fourcc = 0;  // 0: the first of GREY, YUYV, UYVY, NV12, YU12, RGB3, BGR3 offered
-    int fps = 30;         // 0: leave the driver's rate
-    int buffers = 6;
-  };
+  using Settings = CaptureSettings;  // device: /dev/videoN
   // Opens, negotiates the nearest size/format/rate and starts streaming.
   // Throws RuntimeError saying what failed (absent, busy, not a capture device...).
   explicit V4l2Capture(const Settings& settings);
@@ -56,21 +40,22 @@ class V4l2Capture {
   V4l2Capture(const V4l2Capture&) = delete;
   V4l2Capture& operator=(const V4l2Capture&) = delete;
 
-  enum class Result { kFrame, kTimeout, kWoken, kGone };
-  // Waits up to timeout_ms for a frame (or for wake_fd to become readable).
-  // kGone: the device disappeared or failed for good; `error` says how.
-  Result next(V4l2Frame& frame, int timeout_ms, int wake_fd = -1);
-  // Hands a frame's buffer back to the driver.
-  void release(const V4l2Frame& frame);
+  Result next(VideoFrame& frame, int timeout_ms, int wake_fd = -1) override;
+  void release(const VideoFrame& frame) override;
 
-  const V4l2Format& format() const { return format_; }
-  const std::string& device() const { return device_; }
-  const std::string& card() const { return card_; }
-  const std::string& driver() const { return driver_; }
-  const std::string& error() const { return error_; }
+  const VideoFormat& format() const override { return format_; }
+  const std::string& device() const override { return device_; }
+  const std::string& card() const override { return card_; }
+  const std::string& driver() const override { return driver_; }
+  const std::string& error() const override { return error_; }
+  const char* backend() const override { return "v4l2"; }
   int fd() const { return fd_; }
 
-  std::vector<V4l2Control> controls();
+  std::vector<CaptureControl> controls() override;
+  // V4L2: exposure_auto manual, autogain and auto white balance off.
+  std::vector<LockedControl> lock_auto(const AutoLockRequest& request) override;
+
+  std::vector<V4l2Control> v4l2_controls();
   std::optional<int64_t> get_control(uint32_t id);
   // False (and `why`) when the device lacks it or refuses the value.
   bool set_control(uint32_t id, int64_t value, std::string& why);

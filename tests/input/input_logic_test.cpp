@@ -231,6 +231,19 @@ mirror = false
   EXPECT_FALSE(d.inputs[2].mirror);
 }
 
+TEST(InputConfig, LibcameraCameraIds) {
+  // Pi camera ids are device-tree paths: they start with "/" but are no /dev node.
+  for (const char* id : {"platform/vimc.0 Sensor B", "/base/soc/i2c0mux/i2c@1/imx708@1a", "auto"}) {
+    const SceneDesc d = load_scene_text(
+        std::string("[[input]]\nkind = \"camera\"\nbackend = \"libcamera\"\ndevice = \"") + id +
+            "\"\n",
+        "t.toml");
+    ASSERT_EQ(d.inputs.size(), 1u);
+    EXPECT_EQ(d.inputs[0].backend, "libcamera");
+    EXPECT_EQ(d.inputs[0].device, id);
+  }
+}
+
 void expect_error(const char* toml, const std::string& key, const std::string& says) {
   try {
     load_scene_text(toml, "s.toml");
@@ -252,6 +265,11 @@ TEST(InputConfig, ErrorsNameTheKey) {
   expect_error("[[input]]\nkind='anemometer'\nchip='c'\nline=1\ncalibration=-1\n",
                "input[0].calibration", "");
   expect_error("[[input]]\nkind='camera'\ndevice='video0'\n", "input[0].device", "/dev/video0");
+  expect_error("[[input]]\nkind='camera'\nbackend='libcamera'\ndevice='/dev/video0'\n",
+               "input[0].device", "libcamera camera id");
+  expect_error("[[input]]\nkind='camera'\nbackend='v4l2'\ndevice='platform/vimc.0 Sensor B'\n",
+               "input[0].device", "for backend \"v4l2\"");
+  expect_error("[[input]]\nkind='camera'\nbackend='gphoto'\n", "input[0].backend", "libcamera");
   expect_error("input = 3\n", "input", "array of tables");
 }
 

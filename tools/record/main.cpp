@@ -1,4 +1,4 @@
-// candela-record: records a flame dataset from a V4L2 camera. See README.md.
+// candela-record: records a flame dataset from a V4L2 or libcamera camera. See README.md.
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
   using namespace candela::record;
   RecordOptions o;
   CLI::App app{
-      "candela-record: record a flame clip from a V4L2 camera into a folder that\n"
+      "candela-record: record a flame clip from a camera (V4L2 or libcamera) into a folder that\n"
       "`candela-tool ingest` reads (frames/*.png, info.txt, manifest.json).\n"
       "Exposure, gain and white balance are locked where the camera has them.\n"
       "Exit status: 0 done, 2 usage, 3 output folder not writable or full,\n"
@@ -24,7 +24,14 @@ int main(int argc, char** argv) {
       "(--preview); closing its window or pressing Esc/q stops the recording like Ctrl-C.",
       "candela-record"};
   std::string size;
-  app.add_option("--device,-d", o.device, "V4L2 capture device")->capture_default_str();
+  app.add_option("--backend", o.backend,
+                 "Camera backend: v4l2, libcamera, or auto (libcamera first, then V4L2; a /dev "
+                 "path is always V4L2)")
+      ->check(CLI::IsMember({"v4l2", "libcamera", "auto"}))
+      ->capture_default_str();
+  app.add_option("--device,-d", o.device,
+                 "/dev/videoN (V4L2), a libcamera camera id (`cam -l`), or auto (the first)")
+      ->capture_default_str();
   app.add_option("--out,-o", o.out, "Output folder (created; must not hold a recording)")
       ->required();
   app.add_option("--clip", o.clip, "Clip name in the manifest (default: the folder's name)");
@@ -40,8 +47,9 @@ int main(int argc, char** argv) {
   app.add_flag("--color", o.color, "Write RGB PNGs (default: gray luma, like the flame footage)");
   app.add_flag("--keep-auto", o.keep_auto, "Leave auto exposure/gain/white balance alone");
   app.add_option("--exposure", o.exposure,
-                 "Manual exposure (the camera's units; default: current)");
-  app.add_option("--gain", o.gain, "Manual gain (default: current)");
+                 "Manual exposure (V4L2: the camera's units; libcamera: microseconds; default: "
+                 "current)");
+  app.add_option("--gain", o.gain, "Manual gain (libcamera: AnalogueGain; default: current)");
   app.add_option("--white-balance", o.white_balance,
                  "White balance temperature in K (default: current)");
   app.add_option("--queue", o.queue, "Frames buffered for the PNG writers")

@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "input/v4l2_capture.h"
+#include "input/video_capture.h"
 
 namespace candela::record {
 namespace {
@@ -116,41 +117,6 @@ struct Pipeline {
   bool closing = false;
 };
 
-// What lock_controls() did, for the manifest.
-struct Locked {
-  std::string name, outcome;
-};
-
-std::vector<Locked> lock_controls(V4l2Capture& cap, const RecordOptions& o) {
-  std::vector<Locked> out;
-  auto set = [&](uint32_t id, int64_t v, const char* name, const std::string& what) {
-    std::string why;
-    out.push_back({name, cap.set_control(id, v, why) ? what : "not set: " + why});
-  };
-  auto keep = [&](uint32_t id, int64_t v, const char* name) {
-    if (v >= 0) {
-      set(id, v, name, "set to " + std::to_string(v));
-    } else if (auto cur = cap.get_control(id)) {
-      out.push_back({name, "kept at " + std::to_string(*cur)});
-    } else {
-      out.push_back({name, "not offered"});
-    }
-  };
-  if (o.keep_auto) {
-    out.push_back({"auto controls", "left as they were (--keep-auto)"});
-    return out;
-  }
-  // Auto exposure jumps ruin a dataset: everything manual, at the values now in use.
-  set(V4L2_CID_EXPOSURE_AUTO, V4L2_EXPOSURE_MANUAL, "exposure_auto", "manual");
-  set(V4L2_CID_EXPOSURE_AUTO_PRIORITY, 0, "exposure_auto_priority", "off (constant frame rate)");
-  keep(V4L2_CID_EXPOSURE_ABSOLUTE, o.exposure, "exposure_time_absolute");
-  set(V4L2_CID_AUTOGAIN, 0, "gain_automatic", "off");
-  keep(V4L2_CID_GAIN, o.gain, "gain");
-  set(V4L2_CID_AUTO_WHITE_BALANCE, 0, "white_balance_automatic", "off");
-  keep(V4L2_CID_WHITE_BALANCE_TEMPERATURE, o.white_balance, "white_balance_temperature");
-  return out;
-}
-
 }  // namespace
 
 RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, FrameObserver* preview) {
@@ -160,7 +126,14 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
   const fs::path out(o.out);
   const std::string frames_dir = (out / "frames").string();
   const std::string manifest_path = (out / "manifest.json").string();
-  if (fs::exists(manifest_path)) {
+  std::error_code exists_error;
+  const bool exists = fs::exists(manifest_path, exists_error);
+  if (exists_error) {  // e.g. a parent folder this user may not enter
+    res.exit_code = kExitOutput;
+    res.message = "cannot use " + o.out + ": " + exists_error.message();
+    return res;
+  }
+  if (exists) {
     res.exit_code = kExitOutput;
     res.message = o.out + " already holds a recording (manifest.json); choose another folder";
     return res;
@@ -169,9 +142,9 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
       !o.clip.empty() ? o.clip : fs::absolute(out).lexically_normal().filename().string();
 
   // --- the camera -----------------------------------------------------------------
-  std::unique_ptr<V4l2Capture> cap;
+  std::unique_ptr<VideoCapture> cap;
   try {
-    V4l2Capture::Settings s;
+    CaptureSettings s;
     s.device = o.device;
     s.width = o.width;
     s.height = o.height;
@@ -185,7 +158,7 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
         return res;
       }
     }
-    cap = std::make_unique<V4l2Capture>(s);
+    cap = open_video_capture(o.backend, s);
   } catch (const std::exception& e) {
     res.exit_code = kExitCamera;
     res.message = e.what();
@@ -205,9 +178,15 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
     res.message = "--color: " + fourcc_name(f.fourcc) + " frames are recorded gray only";
     return res;
   }
-  const std::vector<Locked> locked = lock_controls(*cap, o);
-  const std::vector<V4l2Control> controls = cap->controls();
-  const std::string card = cap->card(), driver = cap->driver();
+  AutoLockRequest lock_request;
+  lock_request.keep_auto = o.keep_auto;
+  lock_request.exposure = o.exposure;
+  lock_request.gain = o.gain;
+  lock_request.white_balance = o.white_balance;
+  const std::vector<LockedControl> locked = cap->lock_auto(lock_request);
+  const std::vector<CaptureControl> controls = cap->controls();
+  const std::string card = cap->card(), driver = cap->driver(), device = cap->device();
+  const std::string backend = cap->backend();
   const int channels = o.color ? 3 : 1;
   const double fps = f.fps > 0 ? f.fps : o.fps;
 
@@ -216,7 +195,7 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
   std::snprintf(info, sizeof info,
                 "%s: recorded by candela-record from %s (%s), %dx%d %s at %g fps; %s PNG frames "
                 "in frames/; details in manifest.json\n",
-                clip.c_str(), o.device.c_str(), card.c_str(), f.width, f.height,
+                clip.c_str(), device.c_str(), card.c_str(), f.width, f.height,
                 fourcc_name(f.fourcc).c_str(), fps, o.color ? "RGB" : "gray");
   try {
     write_atomic((out / "info.txt").string(), info);
@@ -295,21 +274,21 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
     }
     for (const auto& c : controls)
       controls_json += (controls_json.empty() ? "\n    " : ",\n    ") + json_string(c.name) +
-                       ":{\"id\":" + std::to_string(c.id) +
-                       ",\"value\":" + std::to_string(c.value) +
-                       ",\"default\":" + std::to_string(c.default_value) + "}";
+                       ":{\"id\":" + std::to_string(c.id) + ",\"value\":" + c.value_json +
+                       ",\"default\":" + c.default_json + "}";
     for (const auto& l : locked)
       locked_json +=
           (locked_json.empty() ? "" : ",") + json_string(l.name) + ":" + json_string(l.outcome);
     for (uint32_t d : dropped)
       dropped_json += (dropped_json.empty() ? "" : ",") + std::to_string(d);
-    char head[1024];
+    char head[2048];
     std::snprintf(head, sizeof head,
                   "{\n  \"format\": \"candela-recording\",\n  \"version\": 1,\n  \"clip\": %s,\n"
-                  "  \"device\": %s,\n  \"card\": %s,\n  \"driver\": %s,\n  \"started\": \"%s\",\n"
+                  "  \"backend\": \"%s\",\n  \"device\": %s,\n  \"card\": %s,\n  \"driver\": %s,\n"
+                  "  \"started\": \"%s\",\n"
                   "  \"width\": %d,\n  \"height\": %d,\n  \"pixel_format\": \"%s\",\n"
                   "  \"png\": \"%s\",\n  \"fps\": %g,\n  \"requested_fps\": %d,\n",
-                  json_string(clip).c_str(), json_string(o.device).c_str(),
+                  json_string(clip).c_str(), backend.c_str(), json_string(device).c_str(),
                   json_string(card).c_str(), json_string(driver).c_str(), started.c_str(), f.width,
                   f.height, fourcc_name(f.fourcc).c_str(), o.color ? "rgb8" : "gray8", fps, o.fps);
     const std::string text =
@@ -370,14 +349,14 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
       complete = true;
       break;
     }
-    V4l2Frame frame;
+    VideoFrame frame;
     const auto r = cap->next(frame, 2000);
-    if (r == V4l2Capture::Result::kGone) {
+    if (r == VideoCapture::Result::kGone) {
       end_reason = "the camera went away: " + cap->error();
       res.exit_code = kExitCameraLost;
       break;
     }
-    if (r == V4l2Capture::Result::kTimeout) {
+    if (r == VideoCapture::Result::kTimeout) {
       if (++silent >= 3) {  // 6 s without a frame: the camera is as good as gone
         end_reason = "the camera delivered no frame for 6 s";
         res.exit_code = kExitCameraLost;

@@ -1,4 +1,5 @@
-// candela-record's engine: V4L2 capture into a folder that `candela-tool
+// candela-record's engine: capture (V4L2 or libcamera, see
+// input/video_capture.h) into a folder that `candela-tool
 // ingest` reads unchanged (frames/NNNNNNNN.png + info.txt "NN fps"), plus a
 // manifest.json with timestamps, sequence numbers, the camera controls used
 // and every dropped frame. Every file is written atomically (temporary file +
@@ -15,9 +16,10 @@
 namespace candela::record {
 
 struct RecordOptions {
-  std::string device = "/dev/video0";
-  std::string out;   // folder; created if missing; must not hold a recording already
-  std::string clip;  // default: the folder's name
+  std::string backend = "auto";  // v4l2 | libcamera | auto (libcamera first, then V4L2)
+  std::string device = "auto";   // /dev/videoN, a libcamera camera id, or auto (the first)
+  std::string out;               // folder; created if missing; must not hold a recording already
+  std::string clip;              // default: the folder's name
   int width = 640, height = 480;
   std::string pixel_format;  // e.g. YUYV; empty: the camera's first usable one
   int fps = 30;
@@ -25,7 +27,9 @@ struct RecordOptions {
   double seconds = 0;      // stop after this long (0: no limit)
   bool color = false;      // RGB PNGs instead of gray (luma)
   bool keep_auto = false;  // leave auto exposure/gain/white balance as they are
-  int64_t exposure = -1, gain = -1, white_balance = -1;  // -1: keep the current value, locked
+  // -1: keep the current value, locked. libcamera: exposure in us, gain as
+  // AnalogueGain, white balance not settable (colour gains are kept instead).
+  int64_t exposure = -1, gain = -1, white_balance = -1;
   int queue = 48;   // frames buffered between capture and the PNG writers
   int writers = 2;  // PNG writer threads
 };
