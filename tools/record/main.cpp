@@ -74,7 +74,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; a bad command line exits 2 as documented.
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : kExitUsage;
   }
   if (!size.empty()) {
     char extra = 0;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <cstring>
@@ -21,6 +22,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/log.h"
 #include "input/v4l2_capture.h"
 #include "input/video_capture.h"
 
@@ -190,15 +192,19 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
   const int channels = o.color ? 3 : 1;
   const double fps = f.fps > 0 ? f.fps : o.fps;
 
-  // info.txt: what ingest reads the frame rate from ("NN fps").
-  char info[512];
-  std::snprintf(info, sizeof info,
-                "%s: recorded by candela-record from %s (%s), %dx%d %s at %g fps; %s PNG frames "
-                "in frames/; details in manifest.json\n",
-                clip.c_str(), device.c_str(), card.c_str(), f.width, f.height,
-                fourcc_name(f.fourcc).c_str(), fps, o.color ? "RGB" : "gray");
-  try {
+  // info.txt: what ingest reads the frame rate from ("NN fps"). Rewritten at
+  // the end when the camera's timestamps disagree with the rate it reported.
+  auto write_info = [&](double rate, const char* how) {
+    char info[640];
+    std::snprintf(info, sizeof info,
+                  "%s: recorded by candela-record from %s (%s), %dx%d %s at %g fps%s; %s PNG "
+                  "frames in frames/; details in manifest.json\n",
+                  clip.c_str(), device.c_str(), card.c_str(), f.width, f.height,
+                  fourcc_name(f.fourcc).c_str(), rate, how, o.color ? "RGB" : "gray");
     write_atomic((out / "info.txt").string(), info);
+  };
+  try {
+    write_info(fps, "");
   } catch (const std::exception& e) {
     res.exit_code = kExitOutput;
     res.message = std::string("output folder not writable: ") + e.what();
@@ -257,6 +263,18 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
   const std::string started = utc_now();
   const std::string reserve_path = (out / ".manifest-reserve").string();
   size_t manifest_bytes = 0;
+  // The rate the camera really delivered, from its own timestamps (sequence
+  // gaps count as frame periods): some drivers ignore the rate asked for and
+  // report none (vimc runs at about 50 fps whatever is asked). 0 until 10 frames.
+  auto measured_fps = [&]() -> double {
+    std::lock_guard<std::mutex> lock(p.mutex);
+    if (p.written.size() < 10) return 0;
+    const auto& first = p.written.begin()->second;
+    const auto& last = p.written.rbegin()->second;
+    const double span = static_cast<double>(last.timestamp_ns - first.timestamp_ns) * 1e-9;
+    const double periods = static_cast<double>(last.sequence - first.sequence);
+    return span > 0 ? periods / span : 0;
+  };
   auto manifest = [&](bool final_write) {
     std::string frames_json, controls_json, locked_json, dropped_json;
     uint64_t n = 0;
@@ -272,6 +290,7 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
         ++n;
       }
     }
+    const double measured = measured_fps();
     for (const auto& c : controls)
       controls_json += (controls_json.empty() ? "\n    " : ",\n    ") + json_string(c.name) +
                        ":{\"id\":" + std::to_string(c.id) + ",\"value\":" + c.value_json +
@@ -287,10 +306,12 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
                   "  \"backend\": \"%s\",\n  \"device\": %s,\n  \"card\": %s,\n  \"driver\": %s,\n"
                   "  \"started\": \"%s\",\n"
                   "  \"width\": %d,\n  \"height\": %d,\n  \"pixel_format\": \"%s\",\n"
-                  "  \"png\": \"%s\",\n  \"fps\": %g,\n  \"requested_fps\": %d,\n",
+                  "  \"png\": \"%s\",\n  \"fps\": %g,\n  \"requested_fps\": %d,\n"
+                  "  \"measured_fps\": %.3f,\n",
                   json_string(clip).c_str(), backend.c_str(), json_string(device).c_str(),
                   json_string(card).c_str(), json_string(driver).c_str(), started.c_str(), f.width,
-                  f.height, fourcc_name(f.fourcc).c_str(), o.color ? "rgb8" : "gray8", fps, o.fps);
+                  f.height, fourcc_name(f.fourcc).c_str(), o.color ? "rgb8" : "gray8", fps, o.fps,
+                  measured);
     const std::string text =
         std::string(head) + "  \"locked\": {" + locked_json + "},\n  \"controls\": {" +
         controls_json + "\n  },\n  \"frame_count\": " + std::to_string(n) + ",\n  \"frames\": [" +
@@ -441,6 +462,18 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
     if (res.exit_code == 0) res.exit_code = kExitOutput;
   }
   unlink(reserve_path.c_str());
+  if (const double measured = measured_fps();
+      measured > 0 && std::abs(measured - fps) > 0.05 * fps) {
+    char how[96];
+    std::snprintf(how, sizeof how, " (measured from the camera's timestamps; it reported %g)", fps);
+    try {
+      write_info(std::round(measured * 100) / 100, how);
+      LOG_WARN("%s: the camera delivered %.2f fps, not the %g it reported; info.txt says %.2f",
+               o.out.c_str(), measured, fps, measured);
+    } catch (const std::exception& e) {
+      LOG_WARN("%s: info.txt keeps %g fps (%s)", o.out.c_str(), fps, e.what());
+    }
+  }
   res.dropped = dropped.size();
   res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   res.fps = res.seconds > 0 ? static_cast<double>(res.written) / res.seconds : 0;
