@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/json.h"
 #include "core/log.h"
 #include "input/camera_source.h"
 #include "input/control_channel.h"
@@ -117,22 +118,6 @@ void InputHub::publish(uint64_t step, uint64_t frame, WindSample wind) {
 }
 
 namespace {
-std::string json_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
 std::string ms(int64_t ns) {
   if (ns < 0) return "null";
   char buf[32];
@@ -181,9 +166,9 @@ std::string InputHub::state_json() const {
     std::snprintf(
         buf, sizeof buf, ",\"events\":%llu",
         static_cast<unsigned long long>(applied_by_source_[i].load(std::memory_order_relaxed)));
-    out += std::string(first ? "" : ",") + "{\"name\":\"" + json_escape(s.name) + "\",\"kind\":\"" +
-           input_kind_name(s.kind) + "\",\"status\":\"" + json_escape(status) + "\",\"device\":\"" +
-           json_escape(line) + "\"" + buf + extra + "}";
+    out += std::string(first ? "" : ",") + "{\"name\":" + json_quote(s.name) + ",\"kind\":\"" +
+           input_kind_name(s.kind) + "\",\"status\":" + json_quote(status) +
+           ",\"device\":" + json_quote(line) + buf + extra + "}";
     first = false;
   }
   out += "]}";

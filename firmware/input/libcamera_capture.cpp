@@ -22,6 +22,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/json.h"
 #include "core/log.h"
 #include "input/v4l2_capture.h"
 
@@ -53,16 +54,6 @@ std::shared_ptr<lc::CameraManager> shared_manager() {
   return cm;
 }
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) c = ' ';
-    out += c;
-  }
-  return out + "\"";
-}
-
 // Scalars as JSON numbers/booleans; arrays and the rest as JSON strings.
 std::string control_json(const lc::ControlValue& v) {
   if (v.isNone()) return "null";
@@ -87,7 +78,7 @@ std::string control_json(const lc::ControlValue& v) {
         break;
     }
   }
-  return json_string(v.toString());
+  return json_quote(v.toString());
 }
 
 class LibcameraCapture final : public VideoCapture {

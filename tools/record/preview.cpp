@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "core/image.h"
+#include "core/json.h"
 #include "core/log.h"
 #include "display/display.h"
 #include "gl/gles.h"
@@ -20,21 +21,6 @@
 
 namespace candela::record {
 namespace {
-
-std::string json_escape(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      out += ' ';
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
 
 // Backends explain themselves over several lines (one per card tried); the
 // preview's log line and manifest entry keep it to one.
@@ -170,8 +156,8 @@ std::string RecordPreview::error() const {
 
 std::string RecordPreview::manifest_json() const {
   std::lock_guard<std::mutex> lock(status_mutex_);
-  std::string s = "{\"mode\":" + json_escape(options_.mode) +
-                  ",\"backend\":" + json_escape(backend_) +
+  std::string s = "{\"mode\":" + json_quote(options_.mode) +
+                  ",\"backend\":" + json_quote(backend_) +
                   ",\"opened\":" + (backend_.empty() ? "false" : "true") +
                   ",\"shown\":" + std::to_string(shown_.load()) +
                   ",\"offered\":" + std::to_string(offered_.load()) +
@@ -179,7 +165,7 @@ std::string RecordPreview::manifest_json() const {
   if (!backend_.empty())
     s += ",\"width\":" + std::to_string(display_width_) +
          ",\"height\":" + std::to_string(display_height_);
-  if (!error_.empty()) s += ",\"error\":" + json_escape(error_);
+  if (!error_.empty()) s += ",\"error\":" + json_quote(error_);
   return s + "}";
 }
 

@@ -22,6 +22,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/json.h"
 #include "core/log.h"
 #include "input/v4l2_capture.h"
 #include "input/video_capture.h"
@@ -30,23 +31,6 @@ namespace candela::record {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char b[8];
-      std::snprintf(b, sizeof b, "\\u%04x", c);
-      out += b;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
 
 // Writes `text` to path atomically; throws RuntimeError naming the file and errno.
 void write_atomic(const std::string& path, const std::string& text) {
@@ -292,12 +276,12 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
     }
     const double measured = measured_fps();
     for (const auto& c : controls)
-      controls_json += (controls_json.empty() ? "\n    " : ",\n    ") + json_string(c.name) +
+      controls_json += (controls_json.empty() ? "\n    " : ",\n    ") + json_quote(c.name) +
                        ":{\"id\":" + std::to_string(c.id) + ",\"value\":" + c.value_json +
                        ",\"default\":" + c.default_json + "}";
     for (const auto& l : locked)
       locked_json +=
-          (locked_json.empty() ? "" : ",") + json_string(l.name) + ":" + json_string(l.outcome);
+          (locked_json.empty() ? "" : ",") + json_quote(l.name) + ":" + json_quote(l.outcome);
     for (uint32_t d : dropped)
       dropped_json += (dropped_json.empty() ? "" : ",") + std::to_string(d);
     char head[2048];
@@ -308,8 +292,8 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
                   "  \"width\": %d,\n  \"height\": %d,\n  \"pixel_format\": \"%s\",\n"
                   "  \"png\": \"%s\",\n  \"fps\": %g,\n  \"requested_fps\": %d,\n"
                   "  \"measured_fps\": %.3f,\n",
-                  json_string(clip).c_str(), backend.c_str(), json_string(device).c_str(),
-                  json_string(card).c_str(), json_string(driver).c_str(), started.c_str(), f.width,
+                  json_quote(clip).c_str(), backend.c_str(), json_quote(device).c_str(),
+                  json_quote(card).c_str(), json_quote(driver).c_str(), started.c_str(), f.width,
                   f.height, fourcc_name(f.fourcc).c_str(), o.color ? "rgb8" : "gray8", fps, o.fps,
                   measured);
     const std::string text =
@@ -319,7 +303,7 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
         ", \"sequences\": [" + dropped_json +
         "]},\n  \"preview\": " + (preview ? preview->manifest_json() : "{\"mode\":\"off\"}") +
         ",\n  \"complete\": " + (final_write && complete ? "true" : "false") +
-        ",\n  \"end_reason\": " + json_string(final_write ? end_reason : "recording") + "\n}\n";
+        ",\n  \"end_reason\": " + json_quote(final_write ? end_reason : "recording") + "\n}\n";
     if (final_write) unlink(reserve_path.c_str());
     write_atomic(manifest_path, text);
     manifest_bytes = text.size();
