@@ -1,4 +1,4 @@
-// A flame model as the runtime sees it: typed, validated views into a mapped
+// A flame model as the runtime sees it: typed, validated views into a loaded
 // model file (no copies, no Eigen). Written by `candela-tool build`.
 //
 // Tensors (E components, F frames, H x W pixels; images row-major, top row first):
@@ -89,7 +89,7 @@ struct LearningFlamesModel {
 
 class FlameModel {
  public:
-  // Opens, maps and validates (ModelError on any problem).
+  // Opens, reads and validates (ModelError on any problem).
   static FlameModel load(const std::string& path);
   static FlameModel from(ModelFile file);
 

@@ -58,7 +58,7 @@ const char* to_string(ModelError::Kind k) {
   return "?";
 }
 
-// Either a read-only mapping of a file or an owned buffer.
+// Either a private, page-aligned copy of a file (anonymous memory) or an owned buffer.
 struct ModelFile::Storage {
   const uint8_t* data = nullptr;
   size_t size = 0;
@@ -118,15 +118,37 @@ ModelFile ModelFile::open(const std::string& path) {
     throw ModelError(Kind::kIo, path, "", "not a regular file");
   }
   storage->size = static_cast<size_t>(st.st_size);
+  // Read once into private, page-aligned memory rather than mapping the file:
+  // a mapped file that someone overwrites in place (`cp new.cmodel` over it
+  // while candela runs) would kill the display with SIGBUS on the next touch
+  // of a truncated page. A loaded model never depends on its file again.
   if (storage->size > 0) {
-    void* m = mmap(nullptr, storage->size, PROT_READ, MAP_PRIVATE, fd, 0);
+    void* m =
+        mmap(nullptr, storage->size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (m == MAP_FAILED) {
-      int e = errno;
+      const int e = errno;
       ::close(fd);
-      throw ModelError(Kind::kIo, path, "", std::string("cannot map: ") + std::strerror(e));
+      throw ModelError(
+          Kind::kIo, path, "",
+          "cannot allocate " + std::to_string(storage->size) + " bytes: " + std::strerror(e));
     }
     storage->map = m;
     storage->data = static_cast<const uint8_t*>(m);
+    size_t got = 0;
+    while (got < storage->size) {
+      const ssize_t r = ::read(fd, static_cast<uint8_t*>(m) + got, storage->size - got);
+      if (r < 0 && errno == EINTR) continue;
+      if (r <= 0) {
+        const int e = r < 0 ? errno : 0;
+        ::close(fd);
+        throw ModelError(Kind::kIo, path, "",
+                         e ? std::string("cannot read: ") + std::strerror(e)
+                           : "the file shrank while it was read (" + std::to_string(got) + " of " +
+                                 std::to_string(storage->size) + " bytes); is it being rewritten?");
+      }
+      got += static_cast<size_t>(r);
+    }
+    mprotect(m, storage->size, PROT_READ);  // read-only from here, as a mapping was
   }
   ::close(fd);
   return parse(std::move(storage), path);

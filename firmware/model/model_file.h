@@ -1,5 +1,5 @@
-// The Candela model file: a safetensors-style container that the runtime maps
-// into memory and reads in place (no Eigen, no copies).
+// The Candela model file: a safetensors-style container that the runtime reads
+// once into page-aligned memory and uses in place (no Eigen, no parsing copies).
 //
 //   [u64 little-endian header length N][N bytes of JSON header, space padded]
 //   [tensor data; every tensor starts on a 64-byte boundary of the file]
@@ -41,7 +41,7 @@ struct Tensor {
   std::string name;
   DType dtype = DType::kU8;
   std::vector<int64_t> shape;
-  const uint8_t* data = nullptr;  // inside the mapping, kAlignment-aligned
+  const uint8_t* data = nullptr;  // inside the loaded file, kAlignment-aligned
   size_t bytes = 0;
 
   size_t count() const { return bytes / dtype_size(dtype); }
@@ -65,10 +65,11 @@ class ModelError : public ConfigError {
 };
 const char* to_string(ModelError::Kind k);
 
-// A validated, read-only model file. Cheap to copy (shares the mapping).
+// A validated, read-only model file. Cheap to copy (shares the loaded bytes).
 class ModelFile {
  public:
-  // Maps the file (mmap) and checks framing, header, version and checksum.
+  // Reads the file into private memory (never mapped: overwriting the file later
+  // cannot touch a loaded model) and checks framing, header, version and checksum.
   static ModelFile open(const std::string& path);
   // The same checks on a buffer in memory (tests, fuzzing); `name` is used in errors.
   static ModelFile from_bytes(std::vector<uint8_t> bytes, const std::string& name);

@@ -1,6 +1,7 @@
 // The model file round-trips bit-exactly and every kind of damage is refused
 // with its own error that names the file and the problem.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -58,8 +59,13 @@ cm::ModelWriter small_model(int components = 3) {
   return mw;
 }
 
+// ctest runs each test of this file as its own process, in parallel: every
+// process gets its own files (a shared name let one test truncate a file
+// another was reading).
 std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("candela_model_test_" + name)).string();
+  return (std::filesystem::temp_directory_path() /
+          ("candela_model_test_" + std::to_string(getpid()) + "_" + name))
+      .string();
 }
 
 void write_bytes(const std::string& path, const std::vector<uint8_t>& b) {
@@ -116,6 +122,28 @@ TEST(ModelFile, RoundTripsBitExactly) {
   }
   // And writing the same model twice is byte-identical.
   EXPECT_EQ(small_model().bytes(), bytes);
+}
+
+// A kiosk owner copies a new model over the one candela is showing: the
+// running display keeps the model it loaded (a mapped file would die of
+// SIGBUS on the truncated pages) and the file is only read again on reload.
+TEST(ModelFile, OverwritingTheFileLeavesALoadedModelIntact) {
+  const std::vector<uint8_t> bytes = small_model().bytes();
+  const std::string path = temp_path("live.cmodel");
+  write_bytes(path, bytes);
+  cm::FlameModel m = cm::FlameModel::load(path);
+  const std::vector<uint8_t> nothing(16, 0xee);
+  write_bytes(path, nothing);  // truncated to 16 bytes, in place
+  ASSERT_EQ(std::filesystem::file_size(path), 16u);
+  EXPECT_NEAR(m.mean.value(0, 5), 25.0f, m.mean.scale[0] * 0.5f + 1e-4f);
+  const cm::ModelFile original = cm::ModelFile::from_bytes(bytes, "original");
+  for (const auto& t : m.file().tensors()) {  // every byte still readable and as written
+    const cm::Tensor* u = original.find(t.name);
+    ASSERT_NE(u, nullptr) << t.name;
+    ASSERT_EQ(u->bytes, t.bytes) << t.name;
+    EXPECT_EQ(0, std::memcmp(u->data, t.data, t.bytes)) << t.name;
+  }
+  std::remove(path.c_str());
 }
 
 TEST(ModelFile, TruncationIsReported) {
