@@ -1,6 +1,7 @@
 // Ingest: PNG folders and video files give the same aligned frames; the flame
 // base lands where asked; several plumes are detected; the dataset round-trips.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -12,7 +13,8 @@
 namespace ct = candela::tools;
 
 TEST(Ingest, VideoAndPngFoldersAgree) {
-  const std::string dir = std::filesystem::temp_directory_path() / "candela_ingest_test";
+  const std::string dir =
+      std::filesystem::temp_directory_path() / ("candela_ingest_test_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const std::string video = dir + "/schodl.mkv";
   // A lossless video of the first 20 frames, made by the ffmpeg program.
@@ -83,7 +85,8 @@ TEST(Ingest, DatasetRoundTripsAndLabelsLand) {
   o.height = 48;
   o.labels.push_back(ct::parse_label("candle_schodl_singan:2-5:calm", "test"));
   ct::Dataset d = ct::ingest({ct::read_source(ct::test::clip_dir("candle_schodl_singan"), 10)}, o);
-  const std::string dir = std::filesystem::temp_directory_path() / "candela_dataset_rt";
+  const std::string dir =
+      std::filesystem::temp_directory_path() / ("candela_dataset_rt_" + std::to_string(getpid()));
   ct::save_dataset(d, dir);
   ct::Dataset back = ct::load_dataset(dir);
   EXPECT_EQ(back.pixels, d.pixels);

@@ -3,6 +3,7 @@
 #include "pca.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -25,7 +26,8 @@ TEST(Pca, MatchesNumpySvdOnARealClip) {
   ct::PcaResult r = ct::pca_snapshot(d, o);
   ASSERT_EQ(r.components(), k);
 
-  const std::string dir = std::filesystem::temp_directory_path() / "candela_pca_test";
+  const std::string dir =
+      std::filesystem::temp_directory_path() / ("candela_pca_test_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   {
     std::ofstream f(dir + "/frames.u8", std::ios::binary);
