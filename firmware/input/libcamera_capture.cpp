@@ -31,6 +31,14 @@ namespace {
 
 namespace lc = libcamera;
 
+// libcamera's INFO/WARN lines (e.g. vimc's "no static properties") would fill
+// the kiosk's log on every retry. It creates its log categories lazily and
+// reads their levels from this variable, so it is the only switch that reaches
+// them all; a user's own setting wins (no overwrite). Set during static
+// initialisation, before any thread exists: setenv() racing another thread's
+// getenv() is undefined.
+[[maybe_unused]] const bool kLibcameraLogQuiet = setenv("LIBCAMERA_LOG_LEVELS", "*:ERROR", 0) == 0;
+
 // libcamera allows one CameraManager per process: the captures share it, and
 // it goes when the last of them does (the next open enumerates afresh).
 std::shared_ptr<lc::CameraManager> shared_manager() {
@@ -38,11 +46,6 @@ std::shared_ptr<lc::CameraManager> shared_manager() {
   static std::weak_ptr<lc::CameraManager> weak;
   std::lock_guard<std::mutex> lock(mutex);
   if (auto cm = weak.lock()) return cm;
-  // Its INFO/WARN lines (e.g. vimc's "no static properties") would fill the
-  // kiosk's log on every retry. libcamera creates its log categories lazily
-  // and reads their levels from this variable, so it is the only switch that
-  // reaches them all; a user's own setting wins (no overwrite).
-  setenv("LIBCAMERA_LOG_LEVELS", "*:ERROR", 0);
   std::shared_ptr<lc::CameraManager> cm(new lc::CameraManager, [](lc::CameraManager* m) {
     m->stop();
     delete m;
