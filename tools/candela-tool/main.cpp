@@ -2,6 +2,7 @@
 // Each subcommand lives in its own cmd_*.cpp and registers itself.
 #include <algorithm>
 #include <cstdio>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,9 @@ int main(int argc, char** argv) {
   auto& cmds = registry();
   std::sort(cmds.begin(), cmds.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
   auto usage = [&](FILE* to) {
-    std::fprintf(to, "usage: candela-tool SUBCOMMAND [OPTIONS]   (candela-tool SUBCOMMAND --help)\n\nSubcommands:\n");
+    std::fprintf(to,
+                 "usage: candela-tool SUBCOMMAND [OPTIONS]   (candela-tool SUBCOMMAND "
+                 "--help)\n\nSubcommands:\n");
     for (const auto& c : cmds)
       std::fprintf(to, "  %-16.*s %.*s\n", static_cast<int>(c.name.size()), c.name.data(),
                    static_cast<int>(c.summary.size()), c.summary.data());
@@ -44,7 +47,15 @@ int main(int argc, char** argv) {
       std::string name = std::string("candela-tool ") + argv[1];
       std::vector<char*> args(argv + 1, argv + argc);
       args[0] = name.data();
-      return c.run(static_cast<int>(args.size()), args.data());
+      // One place reports what a subcommand throws ("candela-tool NAME: why",
+      // status 1); subcommands catch only what they answer differently
+      // (a bad value: status 2).
+      try {
+        return c.run(static_cast<int>(args.size()), args.data());
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: %s\n", name.c_str(), e.what());
+        return 1;
+      }
     }
   }
   std::fprintf(stderr, "candela-tool: unknown subcommand '%s'\n\n", argv[1]);

@@ -35,9 +35,6 @@ int run_flame_photo(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "candela-tool flame-photo: %s\n", e.what());
     return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "candela-tool flame-photo: %s\n", e.what());
-    return 1;
   }
 }
 

@@ -129,9 +129,6 @@ int run_simulate(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "candela-tool simulate: %s\n", e.what());
     return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "candela-tool simulate: %s\n", e.what());
-    return 1;
   }
 }
 

@@ -137,9 +137,6 @@ int run_texturize(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "candela-tool texturize: %s\n", e.what());
     return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "candela-tool texturize: %s\n", e.what());
-    return 1;
   }
 }
 

@@ -60,50 +60,45 @@ int run_build(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  try {
-    auto d = candela::tools::load_dataset(dataset);
-    opt.learning_flames = !no_flames;
-    opt.eigen_dtype = bits == 8 ? candela::model::DType::kU8 : candela::model::DType::kU16;
-    opt.progress = [](const std::string& s) { std::fprintf(stderr, "build: %s\n", s.c_str()); };
-    opt.provenance_options = {{"dataset", dataset},
-                              {"components", opt.pca.components},
-                              {"variance", opt.pca.variance},
-                              {"max_components", opt.pca.max_components},
-                              {"holdout", opt.holdout_every},
-                              {"bits", bits},
-                              {"theta_min", opt.graph.theta_min},
-                              {"successors", opt.graph.max_successors},
-                              {"min_jump", opt.graph.min_jump},
-                              {"learning_flames", !no_flames},
-                              {"np", opt.flames.shape.np},
-                              {"nw", opt.flames.shape.nw},
-                              {"ne", opt.flames.ne},
-                              {"particles", opt.flames.arp.particles},
-                              {"order", opt.flames.arp.order}};
-    auto m = candela::tools::build_model(d, opt);
-    m.writer.write(out);
-    if (report.empty()) report = out + ".report";
-    candela::tools::write_reports(d, m, report);
-    std::printf("%s: %d EigenFires of %dx%d over %d frames (%.2f%% of the variance)\n", out.c_str(),
-                m.pca.components(), d.width, d.height, d.frames(),
-                100.0 * m.pca.variance.head(m.pca.components()).sum() / m.pca.total_variance);
-    std::printf("   E   train dB  held-out dB\n");
-    for (const auto& r : m.psnr)
-      std::printf("%4d   %7.2f   %7.2f\n", r.components, r.train_db, r.holdout_db);
-    if (m.has_flames)
-      std::printf(
-          "Learning Flames: %zu single-plume frames, ARP after %d EM iterations; held-out PSNR at "
-          "%d "
-          "parameters/frame: EigenFires %.2f dB, Learning Flames %.2f dB\n",
-          m.flames.frames.size(), m.flames.dynamics.iterations, m.equal_params, m.plain_equal_db,
-          m.flames_equal_db);
-    std::printf("motion graph: %zu edges, theta_min %.1f; reports in %s\n",
-                m.graph.successors.size(), m.graph.theta_min, report.c_str());
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "candela-tool build: %s\n", e.what());
-    return 1;
-  }
+  auto d = candela::tools::load_dataset(dataset);
+  opt.learning_flames = !no_flames;
+  opt.eigen_dtype = bits == 8 ? candela::model::DType::kU8 : candela::model::DType::kU16;
+  opt.progress = [](const std::string& s) { std::fprintf(stderr, "build: %s\n", s.c_str()); };
+  opt.provenance_options = {{"dataset", dataset},
+                            {"components", opt.pca.components},
+                            {"variance", opt.pca.variance},
+                            {"max_components", opt.pca.max_components},
+                            {"holdout", opt.holdout_every},
+                            {"bits", bits},
+                            {"theta_min", opt.graph.theta_min},
+                            {"successors", opt.graph.max_successors},
+                            {"min_jump", opt.graph.min_jump},
+                            {"learning_flames", !no_flames},
+                            {"np", opt.flames.shape.np},
+                            {"nw", opt.flames.shape.nw},
+                            {"ne", opt.flames.ne},
+                            {"particles", opt.flames.arp.particles},
+                            {"order", opt.flames.arp.order}};
+  auto m = candela::tools::build_model(d, opt);
+  m.writer.write(out);
+  if (report.empty()) report = out + ".report";
+  candela::tools::write_reports(d, m, report);
+  std::printf("%s: %d EigenFires of %dx%d over %d frames (%.2f%% of the variance)\n", out.c_str(),
+              m.pca.components(), d.width, d.height, d.frames(),
+              100.0 * m.pca.variance.head(m.pca.components()).sum() / m.pca.total_variance);
+  std::printf("   E   train dB  held-out dB\n");
+  for (const auto& r : m.psnr)
+    std::printf("%4d   %7.2f   %7.2f\n", r.components, r.train_db, r.holdout_db);
+  if (m.has_flames)
+    std::printf(
+        "Learning Flames: %zu single-plume frames, ARP after %d EM iterations; held-out PSNR at "
+        "%d "
+        "parameters/frame: EigenFires %.2f dB, Learning Flames %.2f dB\n",
+        m.flames.frames.size(), m.flames.dynamics.iterations, m.equal_params, m.plain_equal_db,
+        m.flames_equal_db);
+  std::printf("motion graph: %zu edges, theta_min %.1f; reports in %s\n", m.graph.successors.size(),
+              m.graph.theta_min, report.c_str());
+  return 0;
 }
 
 const candela::tool::Registration reg{

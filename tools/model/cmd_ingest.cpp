@@ -42,27 +42,22 @@ int run_ingest(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  try {
-    for (const auto& l : labels) opt.labels.push_back(candela::tools::parse_label(l, "--label"));
-    std::vector<candela::tools::SourceClip> clips;
-    for (const auto& in : inputs) {
-      std::fprintf(stderr, "ingest: reading %s\n", in.c_str());
-      clips.push_back(candela::tools::read_source(in, max_frames, step, fps));
-    }
-    auto d = candela::tools::ingest(
-        clips, opt, [](const std::string& s) { std::fprintf(stderr, "ingest: %s\n", s.c_str()); });
-    candela::tools::save_dataset(d, out);
-    int plumes = 0;
-    for (auto p : d.multi_plume) plumes += p;
-    std::printf(
-        "%s: %d frames %dx%d from %zu clips; %d with several plumes (left out of Learning "
-        "Flames)\n",
-        out.c_str(), d.frames(), d.width, d.height, d.clips.size(), plumes);
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "candela-tool ingest: %s\n", e.what());
-    return 1;
+  for (const auto& l : labels) opt.labels.push_back(candela::tools::parse_label(l, "--label"));
+  std::vector<candela::tools::SourceClip> clips;
+  for (const auto& in : inputs) {
+    std::fprintf(stderr, "ingest: reading %s\n", in.c_str());
+    clips.push_back(candela::tools::read_source(in, max_frames, step, fps));
   }
+  auto d = candela::tools::ingest(
+      clips, opt, [](const std::string& s) { std::fprintf(stderr, "ingest: %s\n", s.c_str()); });
+  candela::tools::save_dataset(d, out);
+  int plumes = 0;
+  for (auto p : d.multi_plume) plumes += p;
+  std::printf(
+      "%s: %d frames %dx%d from %zu clips; %d with several plumes (left out of Learning "
+      "Flames)\n",
+      out.c_str(), d.frames(), d.width, d.height, d.clips.size(), plumes);
+  return 0;
 }
 
 const candela::tool::Registration reg{"ingest", "footage -> aligned gray flame dataset",

@@ -41,49 +41,43 @@ int run_render_weights(int argc, char** argv) {
     return app.exit(e);
   }
   namespace cm = candela::model;
-  try {
-    cm::FlameModel m = cm::FlameModel::load(path);
-    std::vector<float> w(m.components(), 0.0f);
-    if (frame >= 0) {
-      if (frame >= m.frames())
-        throw std::invalid_argument("--frame: the model has " + std::to_string(m.frames()) +
-                                    " frames");
-      auto s = m.weights_of(frame);
-      w.assign(s.begin(), s.end());
-    } else if (!weights.empty()) {
-      if (weights.size() > w.size())
-        throw std::invalid_argument("--weights: more values than the model's " +
-                                    std::to_string(w.size()) + " components");
-      std::copy(weights.begin(), weights.end(), w.begin());
-    } else if (!zero && sets.empty()) {
-      throw std::invalid_argument(
-          "say which weights: --frame N, --weights ..., --zero or --set K=V");
-    }
-    for (const auto& s : sets) {
-      const auto eq = s.find('=');
-      if (eq == std::string::npos) throw std::invalid_argument("--set " + s + ": expected K=VALUE");
-      const int k = std::stoi(s.substr(0, eq));
-      if (k < 0 || k >= m.components())
-        throw std::invalid_argument("--set " + s + ": component out of range");
-      w[k] = std::stof(s.substr(eq + 1));
-    }
-    std::vector<float> img(m.mean.pixels());
-    m.reconstruct(w, img);
-    if (gray) {
-      candela::write_png(out, candela::tools::gray_image(img.data(), m.width(), m.height()));
-    } else {
-      candela::write_png(out, candela::tools::colourise(
-                                  img.data(), m.width(), m.height(), hue >= 0 ? hue : m.colour.hue,
-                                  sat >= 0 ? sat : m.colour.saturation,
-                                  glow_radius >= 0 ? glow_radius : m.colour.glow_radius,
-                                  glow >= 0 ? glow : m.colour.glow_strength, m.colour.black_level));
-    }
-    std::printf("%s: %dx%d\n", out.c_str(), m.width(), m.height());
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "candela-tool render-weights: %s\n", e.what());
-    return 1;
+  cm::FlameModel m = cm::FlameModel::load(path);
+  std::vector<float> w(m.components(), 0.0f);
+  if (frame >= 0) {
+    if (frame >= m.frames())
+      throw std::invalid_argument("--frame: the model has " + std::to_string(m.frames()) +
+                                  " frames");
+    auto s = m.weights_of(frame);
+    w.assign(s.begin(), s.end());
+  } else if (!weights.empty()) {
+    if (weights.size() > w.size())
+      throw std::invalid_argument("--weights: more values than the model's " +
+                                  std::to_string(w.size()) + " components");
+    std::copy(weights.begin(), weights.end(), w.begin());
+  } else if (!zero && sets.empty()) {
+    throw std::invalid_argument("say which weights: --frame N, --weights ..., --zero or --set K=V");
   }
+  for (const auto& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos) throw std::invalid_argument("--set " + s + ": expected K=VALUE");
+    const int k = std::stoi(s.substr(0, eq));
+    if (k < 0 || k >= m.components())
+      throw std::invalid_argument("--set " + s + ": component out of range");
+    w[k] = std::stof(s.substr(eq + 1));
+  }
+  std::vector<float> img(m.mean.pixels());
+  m.reconstruct(w, img);
+  if (gray) {
+    candela::write_png(out, candela::tools::gray_image(img.data(), m.width(), m.height()));
+  } else {
+    candela::write_png(out, candela::tools::colourise(
+                                img.data(), m.width(), m.height(), hue >= 0 ? hue : m.colour.hue,
+                                sat >= 0 ? sat : m.colour.saturation,
+                                glow_radius >= 0 ? glow_radius : m.colour.glow_radius,
+                                glow >= 0 ? glow : m.colour.glow_strength, m.colour.black_level));
+  }
+  std::printf("%s: %dx%d\n", out.c_str(), m.width(), m.height());
+  return 0;
 }
 
 const candela::tool::Registration reg{"render-weights", "render a flame from EigenFire weights",

@@ -42,50 +42,45 @@ int run_synth(int argc, char** argv) {
     return app.exit(e);
   }
   namespace ct = candela::tools;
-  try {
-    candela::model::FlameModel fm = candela::model::FlameModel::load(path);
-    ct::LearningFlamesModel lf = ct::flames_from_model(fm);
-    const int K = lf.dynamics.arp.order;
-    if (start < 0) start = K - 1;
-    if (start < K - 1 || start >= lf.params.rows())
-      throw std::invalid_argument("--start must be a training frame >= order-1");
-    std::mt19937_64 rng(seed);
-    Eigen::MatrixXd x =
-        ct::sample_arp(lf.dynamics.arp, lf.params.middleRows(start - K + 1, K), frames, rng);
-    std::filesystem::create_directories(out);
-    std::ofstream csv(out + "/params.csv");
-    for (int i = 0; i < lf.dim(); ++i) {
-      const char* kind = i < lf.shape.np                  ? "path"
-                         : i < lf.shape.np + lf.shape.nw  ? "width"
-                         : i == lf.shape.np + lf.shape.nw ? "height"
-                                                          : "appearance";
-      csv << (i ? "," : "") << kind << i;
-    }
-    csv << "\n";
-    std::vector<float> img(static_cast<size_t>(fm.width()) * fm.height());
-    for (int t = 0; t < frames; ++t) {
-      Eigen::VectorXd v = x.row(t).transpose();
-      for (int i = 0; i < lf.shape.np; ++i) v[i] += lean * ct::sample_height(i, lf.shape.np);
-      for (int i = 0; i < v.size(); ++i) csv << (i ? "," : "") << v[i];
-      csv << "\n";
-      if (no_png) continue;
-      lf.render(v, fm.width(), fm.height(), img.data());
-      char name[32];
-      std::snprintf(name, sizeof name, "/%05d.png", t);
-      candela::write_png(out + name,
-                         gray ? ct::gray_image(img.data(), fm.width(), fm.height())
-                              : ct::colourise(img.data(), fm.width(), fm.height(), fm.colour.hue,
-                                              fm.colour.saturation, fm.colour.glow_radius,
-                                              fm.colour.glow_strength, fm.colour.black_level));
-      if ((t + 1) % 100 == 0) std::fprintf(stderr, "synth: %d/%d frames\n", t + 1, frames);
-    }
-    std::printf("%s: %d frames synthesised (seed %llu)\n", out.c_str(), frames,
-                static_cast<unsigned long long>(seed));
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "candela-tool synth: %s\n", e.what());
-    return 1;
+  candela::model::FlameModel fm = candela::model::FlameModel::load(path);
+  ct::LearningFlamesModel lf = ct::flames_from_model(fm);
+  const int K = lf.dynamics.arp.order;
+  if (start < 0) start = K - 1;
+  if (start < K - 1 || start >= lf.params.rows())
+    throw std::invalid_argument("--start must be a training frame >= order-1");
+  std::mt19937_64 rng(seed);
+  Eigen::MatrixXd x =
+      ct::sample_arp(lf.dynamics.arp, lf.params.middleRows(start - K + 1, K), frames, rng);
+  std::filesystem::create_directories(out);
+  std::ofstream csv(out + "/params.csv");
+  for (int i = 0; i < lf.dim(); ++i) {
+    const char* kind = i < lf.shape.np                  ? "path"
+                       : i < lf.shape.np + lf.shape.nw  ? "width"
+                       : i == lf.shape.np + lf.shape.nw ? "height"
+                                                        : "appearance";
+    csv << (i ? "," : "") << kind << i;
   }
+  csv << "\n";
+  std::vector<float> img(static_cast<size_t>(fm.width()) * fm.height());
+  for (int t = 0; t < frames; ++t) {
+    Eigen::VectorXd v = x.row(t).transpose();
+    for (int i = 0; i < lf.shape.np; ++i) v[i] += lean * ct::sample_height(i, lf.shape.np);
+    for (int i = 0; i < v.size(); ++i) csv << (i ? "," : "") << v[i];
+    csv << "\n";
+    if (no_png) continue;
+    lf.render(v, fm.width(), fm.height(), img.data());
+    char name[32];
+    std::snprintf(name, sizeof name, "/%05d.png", t);
+    candela::write_png(out + name,
+                       gray ? ct::gray_image(img.data(), fm.width(), fm.height())
+                            : ct::colourise(img.data(), fm.width(), fm.height(), fm.colour.hue,
+                                            fm.colour.saturation, fm.colour.glow_radius,
+                                            fm.colour.glow_strength, fm.colour.black_level));
+    if ((t + 1) % 100 == 0) std::fprintf(stderr, "synth: %d/%d frames\n", t + 1, frames);
+  }
+  std::printf("%s: %d frames synthesised (seed %llu)\n", out.c_str(), frames,
+              static_cast<unsigned long long>(seed));
+  return 0;
 }
 
 const candela::tool::Registration reg{"synth", "sample and render new flames from a model's ARP",

@@ -45,63 +45,57 @@ int run_transition(int argc, char** argv) {
   }
   namespace cm = candela::model;
   namespace ct = candela::tools;
-  try {
-    cm::FlameModel m = cm::FlameModel::load(path);
-    if (alpha < 0 || beta < 0 || alpha >= m.frames() || beta >= m.frames())
-      throw std::invalid_argument("--from/--to must be frames 0.." +
-                                  std::to_string(m.frames() - 1));
-    if (opt.theta_min < 0) opt.theta_min = m.graph.theta_min;
-    std::vector<std::vector<float>> frames;  // weights of each frame to render
-    if (method == "lowpass") {
-      const std::vector<float> k = kernel == "third" ? std::vector<float>{1 / 3.f, 1 / 3.f, 1 / 3.f}
-                                                     : std::vector<float>{0.2f, 0.2f, 0.6f};
-      const int c = m.clips[m.clip_of(alpha)].first, c2 = m.clips[m.clip_of(beta)].first;
-      std::vector<int> t1, t2;
-      for (int f = std::max(c, alpha - 2); f <= alpha; ++f) t1.push_back(f);
-      for (int f = beta; f < std::min(beta + 3, c2 + m.clips[m.clip_of(beta)].count); ++f)
-        t2.push_back(f);
-      Eigen::MatrixXf w =
-          ct::lowpass_transition(ct::model_weights(m), t1, t2, k, components > 0 ? components : 50);
-      std::printf("low-pass: replaces frames %d %d | %d %d with blended weights\n",
-                  t1[t1.size() - 2], t1.back(), t2[0], t2[1]);
-      for (int r = 0; r < 4; ++r) frames.emplace_back(w.row(r).data(), w.row(r).data() + w.cols());
-    } else {
-      ct::WeightSpace s = ct::model_space(m, components);
-      ct::Transition t = method == "grow" ? ct::end_growing(s, alpha, beta, opt)
-                                          : ct::direct_bridging(s, alpha, beta, opt);
-      std::printf("%s %s: %s, theta_min %.2f, distance alpha-beta %.2f\npath:", method.c_str(),
-                  t.found ? "found" : "failed", t.how.c_str(), opt.theta_min,
-                  s.distance(alpha, beta));
-      for (int f : t.path) std::printf(" %d", f);
-      std::printf("\nsteps:");
-      for (size_t i = 0; i + 1 < t.path.size(); ++i)
-        std::printf(" %.1f", s.distance(t.path[i], t.path[i + 1]));
-      std::printf("\n");
-      for (int f : t.path) {
-        auto w = m.weights_of(f);
-        frames.emplace_back(w.begin(), w.end());
-      }
-      if (!t.found && render_dir.empty()) return 3;
+  cm::FlameModel m = cm::FlameModel::load(path);
+  if (alpha < 0 || beta < 0 || alpha >= m.frames() || beta >= m.frames())
+    throw std::invalid_argument("--from/--to must be frames 0.." + std::to_string(m.frames() - 1));
+  if (opt.theta_min < 0) opt.theta_min = m.graph.theta_min;
+  std::vector<std::vector<float>> frames;  // weights of each frame to render
+  if (method == "lowpass") {
+    const std::vector<float> k = kernel == "third" ? std::vector<float>{1 / 3.f, 1 / 3.f, 1 / 3.f}
+                                                   : std::vector<float>{0.2f, 0.2f, 0.6f};
+    const int c = m.clips[m.clip_of(alpha)].first, c2 = m.clips[m.clip_of(beta)].first;
+    std::vector<int> t1, t2;
+    for (int f = std::max(c, alpha - 2); f <= alpha; ++f) t1.push_back(f);
+    for (int f = beta; f < std::min(beta + 3, c2 + m.clips[m.clip_of(beta)].count); ++f)
+      t2.push_back(f);
+    Eigen::MatrixXf w =
+        ct::lowpass_transition(ct::model_weights(m), t1, t2, k, components > 0 ? components : 50);
+    std::printf("low-pass: replaces frames %d %d | %d %d with blended weights\n", t1[t1.size() - 2],
+                t1.back(), t2[0], t2[1]);
+    for (int r = 0; r < 4; ++r) frames.emplace_back(w.row(r).data(), w.row(r).data() + w.cols());
+  } else {
+    ct::WeightSpace s = ct::model_space(m, components);
+    ct::Transition t = method == "grow" ? ct::end_growing(s, alpha, beta, opt)
+                                        : ct::direct_bridging(s, alpha, beta, opt);
+    std::printf("%s %s: %s, theta_min %.2f, distance alpha-beta %.2f\npath:", method.c_str(),
+                t.found ? "found" : "failed", t.how.c_str(), opt.theta_min,
+                s.distance(alpha, beta));
+    for (int f : t.path) std::printf(" %d", f);
+    std::printf("\nsteps:");
+    for (size_t i = 0; i + 1 < t.path.size(); ++i)
+      std::printf(" %.1f", s.distance(t.path[i], t.path[i + 1]));
+    std::printf("\n");
+    for (int f : t.path) {
+      auto w = m.weights_of(f);
+      frames.emplace_back(w.begin(), w.end());
     }
-    if (!render_dir.empty()) {
-      std::filesystem::create_directories(render_dir);
-      std::vector<float> gray(m.mean.pixels());
-      for (size_t i = 0; i < frames.size(); ++i) {
-        m.reconstruct(frames[i], gray);
-        char name[32];
-        std::snprintf(name, sizeof name, "/%04zu.png", i);
-        candela::write_png(
-            render_dir + name,
-            ct::colourise(gray.data(), m.width(), m.height(), m.colour.hue, m.colour.saturation,
-                          m.colour.glow_radius, m.colour.glow_strength, m.colour.black_level));
-      }
-      std::printf("rendered %zu frames into %s\n", frames.size(), render_dir.c_str());
-    }
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "candela-tool transition: %s\n", e.what());
-    return 1;
+    if (!t.found && render_dir.empty()) return 3;
   }
+  if (!render_dir.empty()) {
+    std::filesystem::create_directories(render_dir);
+    std::vector<float> gray(m.mean.pixels());
+    for (size_t i = 0; i < frames.size(); ++i) {
+      m.reconstruct(frames[i], gray);
+      char name[32];
+      std::snprintf(name, sizeof name, "/%04zu.png", i);
+      candela::write_png(
+          render_dir + name,
+          ct::colourise(gray.data(), m.width(), m.height(), m.colour.hue, m.colour.saturation,
+                        m.colour.glow_radius, m.colour.glow_strength, m.colour.black_level));
+    }
+    std::printf("rendered %zu frames into %s\n", frames.size(), render_dir.c_str());
+  }
+  return 0;
 }
 
 const candela::tool::Registration reg{"transition", "find a motion transition between two frames",

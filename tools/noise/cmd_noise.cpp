@@ -82,26 +82,18 @@ int run_noise(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  try {
-    if (!analyze_path.empty()) return analyze(analyze_path);
-    if (out.empty()) {
-      std::fprintf(stderr, "candela-tool noise: --out FILE is required (or --analyze FILE)\n");
-      return 2;
-    }
-    const NoiseTable t = noise::make_table(beta, length, seed, gust);
-    if (!write_if_changed(out, NoiseTable::serialize(t.info(), t.samples()))) {
-      std::fprintf(stderr, "candela-tool noise: cannot write %s: %s\n", out.c_str(),
-                   std::strerror(errno));
-      return 1;
-    }
-    return 0;
-  } catch (const ConfigError& e) {
-    std::fprintf(stderr, "candela-tool noise: %s\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "candela-tool noise: %s\n", e.what());
+  if (!analyze_path.empty()) return analyze(analyze_path);
+  if (out.empty()) {
+    std::fprintf(stderr, "candela-tool noise: --out FILE is required (or --analyze FILE)\n");
+    return 2;
+  }
+  const NoiseTable t = noise::make_table(beta, length, seed, gust);
+  if (!write_if_changed(out, NoiseTable::serialize(t.info(), t.samples()))) {
+    std::fprintf(stderr, "candela-tool noise: cannot write %s: %s\n", out.c_str(),
+                 std::strerror(errno));
     return 1;
   }
+  return 0;
 }
 
 const Registration reg{"noise", "make or analyse 1/f^beta noise tables", run_noise};
