@@ -163,6 +163,45 @@ TEST(CandleRender, BlownOutThenRelit) {
   EXPECT_EQ(bright_regions(h.read(), 180), 3);
 }
 
+// A candle blown out leaves a wisp of smoke above its wick that rises and
+// fades within smoke_seconds (2.5 s by default), after the flame has gone.
+TEST(CandleRender, BlownOutCandleSmokesThenClears) {
+  test::RenderHarness h(scene(1, 0.0, "[element.extinguish]\nrelight_seconds = 8\n"), kW, kH, 3);
+  h.run(5);
+  h.scene().on_key(Key::kBlowOut);
+  LoopSettings one;
+  one.max_frames = 1;
+  // The air above the candle's top, where the flame was and the smoke rises.
+  const Vec2 top = project({0, 0.08f, 0}), high = project({0, 0.2f, 0});
+  auto light_above = [&](double* brightest) {
+    const test::Frame f = h.read();
+    double sum = 0;
+    *brightest = 0;
+    for (int y = static_cast<int>(high.y); y < static_cast<int>(top.y); ++y)
+      for (int x = static_cast<int>(top.x) - 30; x < static_cast<int>(top.x) + 30; ++x) {
+        sum += f.luma(x, y);
+        *brightest = std::max(*brightest, f.luma(x, y));
+      }
+    return sum;
+  };
+  double smoke_peak = 0, last = 0;
+  bool flame_gone = false;
+  for (int i = 0; i < 60 * 4; ++i) {
+    run_frame_loop(h.display(), h.scene(), one);
+    if (i % 15) continue;
+    double brightest = 0;
+    last = light_above(&brightest);
+    if (brightest < 120 && !flame_gone) {
+      flame_gone = true;
+      continue;  // the flame's last light, not smoke yet
+    }
+    if (flame_gone) smoke_peak = std::max(smoke_peak, last);
+  }
+  ASSERT_TRUE(flame_gone);
+  EXPECT_GT(smoke_peak, 4 * last) << "no smoke rose after the flame went out";
+  EXPECT_LT(last, 0.1 * smoke_peak) << "the smoke did not clear";
+}
+
 TEST(CandleRender, SameSeedSameFrames) {
   const std::string s = scene(3);
   const test::Frame a = render(s, 8, 45), b = render(s, 8, 45), c = render(s, 9, 45);

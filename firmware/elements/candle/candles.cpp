@@ -96,6 +96,62 @@ BodyMesh make_body_mesh(int segments, int wick_segments) {
   return m;
 }
 
+// Attribute `loc` reads the vec4 number `vec4_index` of records `stride_vec4`
+// vec4s long from the bound GL_ARRAY_BUFFER.
+void set_attrib(GLuint loc, int vec4_index, int stride_vec4, bool instanced) {
+  glEnableVertexAttribArray(loc);
+  glVertexAttribPointer(
+      loc, 4, GL_FLOAT, GL_FALSE, stride_vec4 * 4 * static_cast<GLsizei>(sizeof(float)),
+      reinterpret_cast<const void*>(static_cast<uintptr_t>(vec4_index) * 4 * sizeof(float)));
+  if (instanced) glVertexAttribDivisor(loc, 1);
+}
+
+// Camera-facing quads, one per instance, corners from gl_VertexID: the glows
+// and the smoke wisps. Instances are staged each frame into storage allocated
+// once, then drawn with one instanced call.
+class Billboards {
+ public:
+  Billboards() = default;
+  Billboards(const char* vert, const char* frag, int vec4s, size_t max_instances)
+      : prog_(Program::from_library(vert, frag)),
+        vp_(prog_.uniform("u_view_projection")),
+        right_(prog_.uniform("u_right")),
+        up_(prog_.uniform("u_up")),
+        vao_(make_vertex_array()),
+        vbo_(make_buffer()),
+        data_(max_instances * static_cast<size_t>(vec4s) * 4, 0.0f),
+        vec4s_(vec4s) {
+    glBindVertexArray(vao_.get());
+    glBindBuffer(GL_ARRAY_BUFFER, vbo_.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data_.size() * sizeof(float)), nullptr,
+                 GL_STREAM_DRAW);
+    for (int k = 0; k < vec4s_; ++k) set_attrib(static_cast<GLuint>(k), k, vec4s_, true);
+  }
+  void clear() { count_ = 0; }
+  int count() const { return count_; }
+  // Where the next instance's vec4s go.
+  float* add() { return &data_[static_cast<size_t>(count_++) * vec4s_ * 4]; }
+  void draw(const FrameContext& frame, const Vec3& right, const Vec3& up) const {
+    prog_.use();
+    glUniformMatrix4fv(vp_, 1, GL_FALSE, frame.view_projection.m);
+    glUniform3f(right_, right.x, right.y, right.z);
+    glUniform3f(up_, up.x, up.y, up.z);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo_.get());
+    glBufferSubData(GL_ARRAY_BUFFER, 0,
+                    static_cast<GLsizeiptr>(count_ * vec4s_ * 4 * sizeof(float)), data_.data());
+    glBindVertexArray(vao_.get());
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count_);
+  }
+
+ private:
+  Program prog_;
+  GLint vp_ = -1, right_ = -1, up_ = -1;
+  VertexArray vao_;
+  Buffer vbo_;
+  std::vector<float> data_;
+  int vec4s_ = 0, count_ = 0;
+};
+
 class Candles final : public Element {
  public:
   Candles(const CandlesSpec& spec, const SceneContext& ctx);
@@ -107,7 +163,6 @@ class Candles final : public Element {
 
  private:
   void prepare(const FrameContext& frame);
-  void set_attrib(GLuint loc, int vec4_index, int stride_vec4, bool instanced);
 
   std::vector<CandleDesc> desc_;
   std::vector<CandleRig> rigs_;
@@ -117,26 +172,25 @@ class Candles final : public Element {
   float smoke_seconds_ = 2.5f;
   float dt_seconds_ = 1.0f / 60;
 
-  Program flame_prog_, glow_prog_, body_prog_, smoke_prog_;
+  Program flame_prog_, body_prog_;
+  Billboards glows_, smokes_;
   Texture still_;
   Buffer flame_mesh_vbo_, flame_mesh_ibo_, flame_inst_vbo_;
-  Buffer glow_vbo_, body_mesh_vbo_, body_mesh_ibo_, body_inst_vbo_, smoke_vbo_;
-  VertexArray flame_vao_, glow_vao_, body_vao_, smoke_vao_;
+  Buffer body_mesh_vbo_, body_mesh_ibo_, body_inst_vbo_;
+  VertexArray flame_vao_, body_vao_;
   GLsizei flame_index_count_ = 0, body_index_count_ = 0;
 
   // Per-frame staging, allocated once.
-  std::vector<float> flame_data_, glow_data_, body_data_, smoke_data_;
+  std::vector<float> flame_data_, body_data_;
   std::vector<uint32_t> order_;  // candles far to near
-  int flames_ = 0, glows_ = 0, smokes_ = 0;
+  int flames_ = 0;
   bool prepared_ = false;
   Vec3 sorted_for_{1e30f, 0, 0};
 
   struct FlameUniforms {
     GLint view_projection, camera, src, weights, aspect, base, still;
   } fu_{};
-  GLint glow_vp_ = -1, glow_right_ = -1, glow_up_ = -1;
   GLint body_vp_ = -1, body_camera_ = -1;
-  GLint smoke_vp_ = -1, smoke_right_ = -1, smoke_up_ = -1;
 };
 
 Candles::Candles(const CandlesSpec& spec, const SceneContext& ctx)
@@ -156,9 +210,7 @@ Candles::Candles(const CandlesSpec& spec, const SceneContext& ctx)
   still_ = upload_rgba8(still.width, still.height, still.pixels.data());
 
   flame_prog_ = Program::from_library("candle_flame.vert", "candle_flame.frag");
-  glow_prog_ = Program::from_library("candle_glow.vert", "candle_glow.frag");
   body_prog_ = Program::from_library("candle_body.vert", "candle_body.frag");
-  smoke_prog_ = Program::from_library("candle_smoke.vert", "candle_smoke.frag");
   fu_ = {flame_prog_.uniform("u_view_projection"),
          flame_prog_.uniform("u_camera"),
          flame_prog_.uniform("u_src"),
@@ -166,20 +218,12 @@ Candles::Candles(const CandlesSpec& spec, const SceneContext& ctx)
          flame_prog_.uniform("u_aspect"),
          flame_prog_.uniform("u_base"),
          flame_prog_.uniform("u_still")};
-  glow_vp_ = glow_prog_.uniform("u_view_projection");
-  glow_right_ = glow_prog_.uniform("u_right");
-  glow_up_ = glow_prog_.uniform("u_up");
   body_vp_ = body_prog_.uniform("u_view_projection");
   body_camera_ = body_prog_.uniform("u_camera");
-  smoke_vp_ = smoke_prog_.uniform("u_view_projection");
-  smoke_right_ = smoke_prog_.uniform("u_right");
-  smoke_up_ = smoke_prog_.uniform("u_up");
 
   const size_t n = desc_.size();
   flame_data_.assign(n * kFlameVec4 * 4, 0);
-  glow_data_.assign(n * kGlowVec4 * 4, 0);
   body_data_.assign(n * kBodyVec4 * 4, 0);
-  smoke_data_.assign(n * kSmokeVec4 * 4, 0);
   order_.resize(n);
   for (size_t i = 0; i < n; ++i) order_[i] = static_cast<uint32_t>(i);
 
@@ -222,16 +266,8 @@ Candles::Candles(const CandlesSpec& spec, const SceneContext& ctx)
     for (int k = 0; k < kFlameVec4; ++k)
       set_attrib(static_cast<GLuint>(1 + k), k, kFlameVec4, true);
   }
-  // Glow: a camera-facing quad per candle (corners from gl_VertexID).
-  {
-    glow_vao_ = make_vertex_array();
-    glBindVertexArray(glow_vao_.get());
-    glow_vbo_ = make_buffer();
-    glBindBuffer(GL_ARRAY_BUFFER, glow_vbo_.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(glow_data_.size() * sizeof(float)),
-                 nullptr, GL_STREAM_DRAW);
-    for (int k = 0; k < kGlowVec4; ++k) set_attrib(static_cast<GLuint>(k), k, kGlowVec4, true);
-  }
+  // Glow: a camera-facing quad per candle.
+  glows_ = Billboards("candle_glow.vert", "candle_glow.frag", kGlowVec4, n);
   // Body: one mesh, per-instance placement, wax colour and flame light.
   {
     const BodyMesh m = make_body_mesh(16, 5);
@@ -258,24 +294,8 @@ Candles::Candles(const CandlesSpec& spec, const SceneContext& ctx)
     for (int k = 0; k < kBodyVec4; ++k) set_attrib(static_cast<GLuint>(2 + k), k, kBodyVec4, true);
   }
   // Smoke wisps of candles that just went out.
-  {
-    smoke_vao_ = make_vertex_array();
-    glBindVertexArray(smoke_vao_.get());
-    smoke_vbo_ = make_buffer();
-    glBindBuffer(GL_ARRAY_BUFFER, smoke_vbo_.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(smoke_data_.size() * sizeof(float)),
-                 nullptr, GL_STREAM_DRAW);
-    for (int k = 0; k < kSmokeVec4; ++k) set_attrib(static_cast<GLuint>(k), k, kSmokeVec4, true);
-  }
+  smokes_ = Billboards("candle_smoke.vert", "candle_smoke.frag", kSmokeVec4, n);
   glBindVertexArray(0);
-}
-
-void Candles::set_attrib(GLuint loc, int vec4_index, int stride_vec4, bool instanced) {
-  glEnableVertexAttribArray(loc);
-  glVertexAttribPointer(
-      loc, 4, GL_FLOAT, GL_FALSE, stride_vec4 * 4 * static_cast<GLsizei>(sizeof(float)),
-      reinterpret_cast<const void*>(static_cast<uintptr_t>(vec4_index) * 4 * sizeof(float)));
-  if (instanced) glVertexAttribDivisor(loc, 1);
 }
 
 // Fills every instance array for this frame: at the glow pass, the first of
@@ -290,7 +310,9 @@ void Candles::prepare(const FrameContext& frame) {
     });
     sorted_for_ = cam;
   }
-  flames_ = glows_ = smokes_ = 0;
+  flames_ = 0;
+  glows_.clear();
+  smokes_.clear();
   const float base_y = look_.layout.base.to_float();
   for (size_t k = 0; k < order_.size(); ++k) {
     const uint32_t i = order_[k];
@@ -347,7 +369,7 @@ void Candles::prepare(const FrameContext& frame) {
       const float dist = length(centre - cam);
       const float fade = 1.0f / (1.0f + (dist / look_.glow_falloff) * (dist / look_.glow_falloff));
       const float warm = std::clamp(bright, 0.0f, 1.5f);
-      float* g = &glow_data_[static_cast<size_t>(glows_++) * kGlowVec4 * 4];
+      float* g = glows_.add();
       const float glow[kGlowVec4 * 4] = {centre.x,
                                          centre.y,
                                          centre.z,
@@ -361,7 +383,7 @@ void Candles::prepare(const FrameContext& frame) {
     const float smoke_age =
         s.out_steps >= 0 ? static_cast<float>(s.out_steps) * dt_seconds_ : -1.0f;
     if (smoke_age >= 0 && smoke_age < smoke_seconds_) {
-      float* sm = &smoke_data_[static_cast<size_t>(smokes_++) * kSmokeVec4 * 4];
+      float* sm = smokes_.add();
       const float smoke[kSmokeVec4 * 4] = {base.x,
                                            base.y + wick * 0.3f,
                                            base.z,
@@ -385,21 +407,12 @@ void Candles::draw(const FrameContext& frame, DrawPass pass) {
   const Vec3 up{v.at(1, 0), v.at(1, 1), v.at(1, 2)};
   const Vec3 cam = frame.camera_position;
   if (pass == DrawPass::kGlow) {
-    if (!glows_) return;
+    if (!glows_.count()) return;
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    glow_prog_.use();
-    glUniformMatrix4fv(glow_vp_, 1, GL_FALSE, frame.view_projection.m);
-    glUniform3f(glow_right_, right.x, right.y, right.z);
-    glUniform3f(glow_up_, up.x, up.y, up.z);
-    glBindBuffer(GL_ARRAY_BUFFER, glow_vbo_.get());
-    glBufferSubData(GL_ARRAY_BUFFER, 0,
-                    static_cast<GLsizeiptr>(glows_ * kGlowVec4 * 4 * sizeof(float)),
-                    glow_data_.data());
-    glBindVertexArray(glow_vao_.get());
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, glows_);
+    glows_.draw(frame, right, up);
   } else if (pass == DrawPass::kBody) {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -450,18 +463,9 @@ void Candles::draw(const FrameContext& frame, DrawPass pass) {
       glDrawElementsInstanced(GL_TRIANGLES, flame_index_count_, GL_UNSIGNED_SHORT, nullptr,
                               flames_);
     }
-    if (smokes_) {
+    if (smokes_.count()) {
       glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-      smoke_prog_.use();
-      glUniformMatrix4fv(smoke_vp_, 1, GL_FALSE, frame.view_projection.m);
-      glUniform3f(smoke_right_, right.x, right.y, right.z);
-      glUniform3f(smoke_up_, up.x, up.y, up.z);
-      glBindBuffer(GL_ARRAY_BUFFER, smoke_vbo_.get());
-      glBufferSubData(GL_ARRAY_BUFFER, 0,
-                      static_cast<GLsizeiptr>(smokes_ * kSmokeVec4 * 4 * sizeof(float)),
-                      smoke_data_.data());
-      glBindVertexArray(smoke_vao_.get());
-      glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, smokes_);
+      smokes_.draw(frame, right, up);
     }
     glDepthMask(GL_TRUE);
   }
