@@ -338,13 +338,7 @@ TEST(ArpProcess, DefaultModelKeepsItsTrainingSpectrum) {
   const model::FlameModel& m = *em->model;
   ASSERT_TRUE(m.has_learning_flames);
   const auto& L = m.flames;
-  ArpView v;
-  v.dim = L.dim;
-  v.order = L.order;
-  v.A = L.A;
-  v.d = L.d;
-  v.B = L.B;
-  v.training = L.params;
+  const ArpView v = ArpView::of(L);
   const int steps = 8192;
   // The flame height, as the model builder's own measure (path samples carry
   // the breeze clips' slow leaning, which a spectrum of the joined clips mixes in).

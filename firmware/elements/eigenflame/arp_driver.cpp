@@ -3,8 +3,20 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "model/flame_model.h"
 
 namespace candela {
+
+ArpView ArpView::of(const model::LearningFlamesModel& flames) {
+  ArpView v;
+  v.dim = flames.dim;
+  v.order = flames.order;
+  v.A = flames.A;
+  v.d = flames.d;
+  v.B = flames.B;
+  v.training = flames.params;
+  return v;
+}
 
 float ArpProcess::gaussian(Pcg32& rng) {
   int64_t sum = 0;

@@ -24,12 +24,17 @@
 #include "core/random.h"
 
 namespace candela {
+namespace model {
+struct LearningFlamesModel;
+}
 
 struct ArpView {
   int dim = 0, order = 2;
   std::span<const float> A, d, B;   // K*D*D (A_k[i][j] at (k*D + i)*D + j), D, D*D
   std::span<const float> training;  // T x D: the training parameter sequence
   int frames() const { return dim > 0 ? static_cast<int>(training.size()) / dim : 0; }
+  // The learned process of a model file (views into it; the model outlives them).
+  static ArpView of(const model::LearningFlamesModel& flames);
 };
 
 class ArpProcess {

@@ -133,14 +133,7 @@ class EigenFlame final : public Element {
     if (s.driver == EigenDriver::kArp && m.has_learning_flames) {
       const auto& L = m.flames;
       shape_ = std::make_unique<FlameShapeModel>(FlameShapeModel::from(m));
-      ArpView v;
-      v.dim = L.dim;
-      v.order = L.order;
-      v.A = L.A;
-      v.d = L.d;
-      v.B = L.B;
-      v.training = L.params;
-      arp_ = std::make_unique<ArpProcess>(v, seed);
+      arp_ = std::make_unique<ArpProcess>(ArpView::of(L), seed);
       prev_.fill(0);
       next_.fill(0);
       const auto st = arp_->state();
