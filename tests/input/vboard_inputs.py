@@ -364,13 +364,7 @@ def case_record_libcamera_unplugged():
     out = os.path.join(WORK, "clip")
     proc = subprocess.Popen([RECORD, "--backend", "libcamera", "--device", cam_id, "--out", out,
                              "--size", "320x240", "-n", "100000"], stderr=subprocess.PIPE, text=True)
-
-    def frames_so_far():
-        try:
-            return json.load(open(os.path.join(out, "manifest.json")))["frame_count"] >= 5
-        except (OSError, ValueError):
-            return False
-    wait_for("5 frames in the manifest", frames_so_far, timeout=60)
+    wait_for_manifest_frames(out, 5)
     # Unbinding the driver removes the media graph: udev tells libcamera, as for a yanked camera.
     with open("/sys/bus/platform/drivers/vimc/unbind", "w") as f:
         f.write("vimc.0")
@@ -418,6 +412,16 @@ def png_size(path):
         return None
     w, h, depth, ctype = struct.unpack(">IIBB", data[16:26])
     return w, h, ctype
+
+
+def wait_for_manifest_frames(out, n):
+    """Until a running recording's manifest (rewritten every second) lists n frames."""
+    def listed():
+        try:
+            return json.load(open(os.path.join(out, "manifest.json")))["frame_count"] >= n
+        except (OSError, ValueError):  # not written yet, or caught mid-rename
+            return False
+    wait_for("%d frames in the manifest" % n, listed, timeout=60)
 
 
 def check_dataset(out, m):
@@ -532,13 +536,7 @@ def case_record_camera_unplugged():
     proc = subprocess.Popen([RECORD, "--device", "/dev/video0", "--out", out, "--size", "320x180",
                              "--fps", "10", "-n", "100000", "--preview", "off"],
                             stderr=subprocess.PIPE, text=True)
-
-    def frames_so_far():
-        try:
-            return json.load(open(os.path.join(out, "manifest.json")))["frame_count"] >= 5
-        except (OSError, ValueError):
-            return False
-    wait_for("5 frames in the manifest", frames_so_far, timeout=60)
+    wait_for_manifest_frames(out, 5)
     vivid_set("/dev/video0", disconnect=1)  # vivid's simulated USB unplug
     _, err = proc.communicate(timeout=60)
     print("candela-record: status %d: %s" % (proc.returncode, err.strip()), flush=True)
