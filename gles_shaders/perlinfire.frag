@@ -7,7 +7,13 @@
 // looked-up colour is summed. The ray stops at the volume's edge or at the
 // obstacle (logs, grate) filling the box below u_obstacle.
 // The program builder puts perlinfire_noise.frag in front of this text and
-// defines PF_NOISE_KIND: 0 simplex3d, 1 flow3d, 2 simplex4d, 3 perlin4d.
+// defines PF_NOISE_KIND: 0 simplex3d, 1 flow3d, 2 simplex4d, 3 perlin4d, and
+// PF_SHADING: 0 sums the profile's colours along the ray (the paper's way:
+// soft, like glowing gas), 1 draws flame sheets: the profile's density, moved
+// by the noise, is cut at a sharp threshold (so the noise tears the outline
+// into tongues that split and detach), the hot path length through the sheets
+// is exposed like a camera sees a flame (cores clip to white) and coloured
+// by a black-body ramp (fire_ramp.glsl, applied here or after upscaling).
 precision highp float;
 precision highp int;
 
@@ -34,6 +40,11 @@ uniform float u_intensity;
 uniform float u_obstacle;    // the box is solid below this height (unit y)
 uniform vec3 u_color;
 uniform sampler2D u_profile; // premultiplied RGBA; u = radius, v = 1 - height
+uniform vec2 u_sheet;        // flame shading: density threshold, the density range above it to full
+uniform float u_rise_growth; // displacement at the base, relative to the top's
+uniform float u_wobble;      // how much the noise also moves the lookup radius
+uniform int u_ramp_here;     // 1: colour here; 0: write the exposure for the composite
+uniform int u_slices;        // flame shading: camera-facing slabs sampled
 
 float pf_turbulence(vec3 q) {
   vec3 b = q * u_noise_scale;
@@ -87,6 +98,7 @@ void main() {
   }
   if (t_out <= t_in) discard;
 
+#if PF_SHADING == 0
   // Equal steps of about u_step_length fire heights, from a jittered start
   // (the permutation texture again) so that steps do not band.
   float len = length(d * u_world_scale) * (t_out - t_in);
@@ -106,6 +118,47 @@ void main() {
     float v = p.y + u_displacement * (pf_turbulence(q) - u_turbulence_mean);
     acc += textureLod(u_profile, vec2(r, 1.0 - v), 0.0) * ds;
   }
+#else
+  // Flame sheets: the volume is cut into u_slices slabs facing the camera
+  // (after Horvath & Geiger: 2-D detail is what reads as fire on a flat
+  // screen), each sampled once where the ray crosses its middle. No jitter:
+  // each slab's field is continuous across the screen, so its edges stay
+  // crisp instead of breaking into speckle.
+  vec2 facing = dot(u_camera.xz, u_camera.xz) > 1e-6 ? normalize(u_camera.xz) : vec2(0.0, 1.0);
+  float along = dot(d.xz, facing);
+  float hot = 0.0;
+  if (abs(along) > 1e-5) {
+    // Path length through one slab, in fire heights (capped for grazing rays).
+    float slab = (u_world_scale.x + u_world_scale.z) * 0.5 / float(u_slices);
+    float ds = slab * min(length(d * u_world_scale) / abs(along * (u_world_scale.x + u_world_scale.z) * 0.5), 4.0);
+    float c0 = dot(u_camera.xz, facing);
+    for (int k = 0; k < 16; ++k) {
+      if (k >= u_slices) break;
+      float plane = (float(k) + 0.5) / float(u_slices) - 0.5;
+      float t = (plane - c0) / along;
+      if (t < t_in || t > t_out) continue;
+      vec3 p = u_camera + d * t;
+      vec3 q = p;
+      q.xz -= u_lean * (p.y * p.y);
+      float r = 2.0 * length(q.xz);
+      if (r >= 1.0) continue;
+      // Turbulence tears the upper flame more than its base; where it lifts
+      // the lookup it also widens it, so gaps between tongues open deep.
+      float turb = pf_turbulence(q) - u_turbulence_mean;
+      float v = p.y + u_displacement * turb * mix(u_rise_growth, 1.0, clamp(p.y, 0.0, 1.0));
+      vec4 c = textureLod(u_profile, vec2(r * (1.0 + u_wobble * turb), 1.0 - v), 0.0);
+      float sheet = clamp((c.a - u_sheet.x) / u_sheet.y, 0.0, 1.0);
+      // Heat: the profile's straight colour (its luminance), hotter at the base.
+      float heat = dot(c.rgb, vec3(0.299, 0.587, 0.114)) / max(c.a, 1.0 / 255.0);
+      hot += sheet * heat * ds;
+    }
+  }
+#endif
+#if PF_SHADING == 0
   acc *= u_intensity;
   o_color = vec4(acc.rgb * u_color, 1.0 - exp(-acc.a));
+#else
+  float exposure = 1.0 - exp(-u_intensity * hot);
+  o_color = u_ramp_here == 1 ? fire_ramp(exposure, u_color) : vec4(exposure);
+#endif
 }

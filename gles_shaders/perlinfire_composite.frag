@@ -2,10 +2,21 @@
 // Puts the Perlin fire, rendered at a fraction of the screen's size into the
 // lower-left corner of its own texture, onto the screen, scaled up with
 // linear filtering. Drawn with fullscreen.vert, scissored to the fire's box.
+// The builder puts "#define PF_SHADING" and fire_ramp.frag in front: flame
+// sheets are stored as exposure and coloured here, after upscaling, so their
+// edges stay as crisp as the screen's pixels.
 precision highp float;
 
-uniform sampler2D u_image;  // premultiplied colour
+uniform sampler2D u_image;    // PF_SHADING 0: premultiplied colour; 1: exposure
 uniform vec2 u_uv_per_pixel;  // screen pixel -> texture coordinate
+uniform vec3 u_color;         // the fire's tint (sheets)
 out vec4 o_color;
 
-void main() { o_color = textureLod(u_image, gl_FragCoord.xy * u_uv_per_pixel, 0.0); }
+void main() {
+  vec4 t = textureLod(u_image, gl_FragCoord.xy * u_uv_per_pixel, 0.0);
+#if PF_SHADING == 1
+  o_color = fire_ramp(t.r, u_color);
+#else
+  o_color = t;
+#endif
+}

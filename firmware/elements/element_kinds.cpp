@@ -1,6 +1,7 @@
 // Every kind of scene element the runtime knows. Add a kind here.
 #include "elements/candle/candles.h"
 #include "elements/eigenflame/eigenflame.h"
+#include "elements/hearth/hearth.h"
 #include "elements/perlinfire/perlinfire.h"
 #include "elements/test_pattern/test_pattern.h"
 #include "scene/element.h"
@@ -13,6 +14,7 @@ std::span<const ElementKind> element_kinds() {
       candles_kind(),
       perlinfire_kind(),
       eigenflame_kind(),
+      hearth_kind(),
   };
   return kKinds;
 }

@@ -22,13 +22,20 @@ struct ChannelInfo {
   double rate;        // samples per second: a little different per channel so
                       // the candle's channels never fall into step
 };
-// Betas: Table 1; Table 2 gives ranges (2.0-2.8, 1.0-1.8): their middles.
+// Betas: Table 2 gives ranges (2.0-2.8, 1.0-1.8) for the breeze: their
+// middles. Calm: Table 1's betas (2.8 sway and width, 2.0 stretch) put
+// nearly all the motion in the tables' slowest components, and the outline
+// then decorrelates in 0.8 s where real calm candles take 0.24-0.37 s
+// (../shared/eval, tau_s); sway, width and stretch use 1.4 here (a scene may
+// ask for the paper's betas), and the tip flicker (beyond the paper) is
+// near-pink. Rates are table samples per second (the paper gives none): with
+// the 32768-sample tables every channel's period is 7-18 s, each different.
 constexpr ChannelInfo kChannels[kNoiseChannels] = {
-    {"calm", "sway", 2.8, 256},         {"calm", "tilt", 2.8, 241},
-    {"calm", "stretch", 2.0, 229},      {"calm", "width", 2.8, 271},
-    {"breeze", "lean", 2.4, 397},       {"breeze", "tilt", 2.4, 383},
-    {"breeze", "stretch", 1.4, 331},    {"breeze", "width", 2.4, 367},
-    {"breeze", "turbulence", 2.0, 409},
+    {"calm", "sway", 1.4, 1800},    {"calm", "tilt", 2.8, 2892},
+    {"calm", "stretch", 1.4, 3000}, {"calm", "width", 1.4, 1900},
+    {"calm", "flicker", 1.0, 4800}, {"breeze", "lean", 2.4, 3176},
+    {"breeze", "tilt", 2.4, 3064},  {"breeze", "stretch", 1.4, 2648},
+    {"breeze", "width", 2.4, 2936}, {"breeze", "turbulence", 2.0, 3301},
 };
 
 std::string beta_choices() {
@@ -116,7 +123,9 @@ CandleParams parse_candle_params(ParamReader& r, const CandleParams& base) {
     p.calm_stretch_high = num(c, "stretch_high", p.calm_stretch_high, 0.01, 4);
     p.calm_width_thin = num(c, "width_thin", p.calm_width_thin, 0.01, 4);
     p.calm_width_thick = num(c, "width_thick", p.calm_width_thick, 0.01, 4);
-    for (int ch = kCalmSway; ch <= kCalmWidth; ++ch) read_noise(c, ch, p.noise[ch]);
+    p.flicker = num(c, "flicker", p.flicker, 0, 0.5);
+    p.calm_turbulence = num(c, "turbulence", p.calm_turbulence, 0, 1);
+    for (int ch = kCalmSway; ch <= kCalmFlicker; ++ch) read_noise(c, ch, p.noise[ch]);
     c.finish();
   }
   {
@@ -131,6 +140,7 @@ CandleParams parse_candle_params(ParamReader& r, const CandleParams& base) {
     p.flutter = num(b, "flutter", p.flutter, 0, 1);
     p.turbulence = num(b, "turbulence", p.turbulence, 0, 0.5);
     p.turbulence_lag = num(b, "turbulence_lag", p.turbulence_lag, 0, 2);
+    p.bend = num(b, "bend", p.bend, 0, 0.9);
     for (int ch = kBreezeLean; ch <= kTurbulence; ++ch) read_noise(b, ch, p.noise[ch]);
     b.finish();
   }

@@ -24,6 +24,7 @@ enum NoiseChannel : int {
   kCalmTilt,       // front-back billboard rotation, theta_f
   kCalmStretch,    // vertical stretch L
   kCalmWidth,      // horizontal stretch W
+  kCalmFlicker,    // the tip's small fast flicker (beyond the paper)
   kBreezeLean,     // left-right lean under wind
   kBreezeTilt,     // front-back lean under wind
   kBreezeStretch,  // vertical stretch under wind
@@ -52,6 +53,14 @@ struct CandleParams {
   Fixed tilt_front = Fixed::from_int(-15), tilt_rear = Fixed::from_int(15);
   Fixed calm_stretch_low = Fixed::from_ratio(83, 100), calm_stretch_high = Fixed::from_int(1);
   Fixed calm_width_thin = Fixed::from_ratio(80, 100), calm_width_thick = Fixed::from_int(1);
+  // Beyond the paper: a real candle's tip flickers fast and small on top of
+  // the slow sway (tip length +-flicker, in flame lengths), and its outline
+  // ripples a little even in still air (this share of the turbulence D_max).
+  Fixed flicker = Fixed::from_ratio(14, 100);
+  Fixed calm_turbulence = Fixed::from_ratio(35, 100);
+  // A breeze bends the flame along its length: the top segment leans this
+  // much more than the mean lean, the bottom one as much less.
+  Fixed bend = Fixed::from_ratio(30, 100);
   // Table 2: light breeze.
   Fixed lean = Fixed::from_int(60), breeze_tilt = Fixed::from_int(20);
   Fixed breeze_stretch_low = Fixed::from_ratio(10, 100), breeze_stretch_high = Fixed::from_int(1);
@@ -84,12 +93,12 @@ struct CandleParams {
 struct FlameLook {
   std::shared_ptr<const Image> still;  // RGBA; null: the built-in procedural still
   StillLayout layout;
-  int mesh = 8;                                        // warp mesh cells per side
+  int mesh = 12;  // warp mesh cells per side (the paper: 8; the bending flame needs finer)
   float warp_a = 0.02f, warp_b = 2.0f, warp_p = 0.5f;  // Beier-Neely weight constants
   float flame_height = 0.055f;  // world metres per still height, before flame_scale
-  float glow_scale = 3.2f;      // glow diameter / morphed billboard diagonal
-  float glow_strength = 0.55f;
-  float glow_falloff = 3.0f;  // metres at which the glow's alpha has halved
+  float glow_scale = 3.0f;      // glow diameter / morphed billboard diagonal
+  float glow_strength = 0.2f;   // a halo: lights the wax and the air near the flame
+  float glow_falloff = 3.0f;    // metres at which the glow's alpha has halved
 };
 
 // Reads the calm/breeze/wick/pendulum/extinguish sub-tables of `r` on top

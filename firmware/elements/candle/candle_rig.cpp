@@ -1,5 +1,7 @@
 #include "elements/candle/candle_rig.h"
 
+#include <algorithm>
+
 #include "core/random.h"
 #include "scene/element.h"
 #include "wind/fixed_math.h"
@@ -61,6 +63,9 @@ CandleRig::CandleRig(const CandleParams& p, const StillLayout& layout, WindPosit
   relight_seconds_ = p.relight_seconds;
   regrow_seconds_ = p.regrow_seconds;
   turbulence_lag_ = p.turbulence_lag;
+  flicker_ = p.flicker;
+  calm_turbulence_ = p.calm_turbulence;
+  bend_ = p.bend;
   Pcg32 rng(seed, 0x63616e646c65);
   for (int c = 0; c < kNoiseChannels; ++c) {
     const NoiseSource& n = p.noise[c];
@@ -113,10 +118,13 @@ void CandleRig::update(WindSample wind, Fixed dt) {
   // for each point further up, so a disturbance travels up the flame.
   const uint32_t lag = static_cast<uint32_t>(
       (static_cast<int64_t>(rates_[kTurbulence].raw) * turbulence_lag_.raw) >> 16);
+  // In still air a little of it stays: the outline never freezes.
+  const Fixed turbulence_share = std::max(s.strength, calm_turbulence_);
   for (int i = 0; i < kTurbulenceSegments - 1; ++i) {
     const Fixed d = tables_[kTurbulence]->at(s.phase[kTurbulence] - lag * (i + 1));
-    s.turbulence[i] = lerp(-turbulence_, turbulence_, d) * s.strength;
+    s.turbulence[i] = lerp(-turbulence_, turbulence_, d) * turbulence_share;
   }
+  s.tip = lerp(-flicker_, flicker_, n[kCalmFlicker]);
   s.stuck = abs(s.lean - wick_angle_) > stick_angle_;
 
   // Blowing out and relighting.
@@ -152,10 +160,21 @@ void CandleRig::build_lines() {
   const Fixed ux = sn, uy = cs, rx = cs, ry = -sn;
   Fixed cx[kTurbulenceSegments + 1], cy[kTurbulenceSegments + 1];
   const bool upright = abs(s.lean) < kQuarterPi;
+  // The flame bends along its length: each segment leans by its own angle,
+  // the lean's share growing towards the tip (the base stays on the wick),
+  // so the tip streams downwind. The tip segment also flickers in length.
+  cx[0] = Fixed{};
+  cy[0] = L.base;
+  const Fixed segment = h / kTurbulenceSegments;
+  for (int k = 1; k <= kTurbulenceSegments; ++k) {
+    const Fixed share =
+        kOne + bend_ * (2 * k - 1 - kTurbulenceSegments) / (kTurbulenceSegments - 1);
+    const Fixed a = clamp(s.lean * share, -kMaxLean, kMaxLean);
+    const Fixed len = k == kTurbulenceSegments ? segment + h * s.tip : segment;
+    cx[k] = cx[k - 1] + fixed_sin(a) * len;
+    cy[k] = cy[k - 1] + fixed_cos(a) * len;
+  }
   for (int k = 0; k <= kTurbulenceSegments; ++k) {
-    const Fixed t = h * k / kTurbulenceSegments;
-    cx[k] = ux * t;
-    cy[k] = L.base + uy * t;
     if (k > 0 && k < kTurbulenceSegments) {
       // Eq. (3): across a mostly upright flame, else along y.
       if (upright)

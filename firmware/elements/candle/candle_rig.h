@@ -44,6 +44,7 @@ struct CandleState {
   Fixed stretch, width;  // vertical and horizontal stretch ratios
   Fixed strength;        // how much of the breeze deformation applies, 0..1
   std::array<Fixed, kTurbulenceSegments - 1> turbulence{};  // D at the split points
+  Fixed tip;                                                // tip flicker, flame lengths
   Fixed grow = Fixed::from_int(1);                          // flame size while relighting, 0..1
   Fixed wind_speed;                                         // |wind| here, m/s
   int32_t out_steps = -1;                                   // steps since it went out; -1 while lit
@@ -84,6 +85,7 @@ class CandleRig {
   Fixed omega_sq_, two_zeta_omega_;
   Fixed extinguish_speed_, relight_seconds_, regrow_seconds_;
   Fixed turbulence_lag_;
+  Fixed flicker_, calm_turbulence_, bend_;
   Fixed brightness_norm_;
   std::array<const NoiseTable*, kNoiseChannels> tables_{};
   std::array<Fixed, kNoiseChannels> rates_{};

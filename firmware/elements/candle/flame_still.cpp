@@ -38,19 +38,21 @@ Image make_flame_still(int height, const StillLayout& layout) {
       if (half <= 1e-6) continue;
       const double d = std::abs(x) / half;  // 0 on the axis, 1 at the edge
       if (d >= 1) continue;
-      // Colours: orange rim, yellow body, white core, blue base.
-      double r = 1.0, g = 0.42, b = 0.08;
-      const double body = smoothstep(0.95, 0.55, d);
-      r = mix(r, 1.0, body), g = mix(g, 0.74, body), b = mix(b, 0.26, body);
+      // Colours: a thin orange rim, a yellow body, a large core bright enough
+      // to clip to white (as a camera sees a candle), the blue base at the wick.
+      double r = 1.0, g = 0.55, b = 0.16;
+      const double body = smoothstep(0.98, 0.8, d);
+      r = mix(r, 1.0, body), g = mix(g, 0.86, body), b = mix(b, 0.5, body);
       const double core =
-          smoothstep(0.65, 0.15, d) * smoothstep(0.02, 0.22, t) * smoothstep(0.9, 0.45, t);
-      r = mix(r, 1.0, core), g = mix(g, 0.97, core), b = mix(b, 0.86, core);
-      const double blue = smoothstep(0.2, 0.0, t) * smoothstep(0.15, 0.6, d + 0.3 * (0.2 - t));
-      r = mix(r, 0.22, blue), g = mix(g, 0.36, blue), b = mix(b, 1.0, blue);
-      // Soft edge; the blue base is fainter, the tip thins out.
-      double a = smoothstep(1.0, 0.6, d) * smoothstep(1.0, 0.82, t);
-      a *= 1 - 0.45 * blue;
-      a *= 0.7 + 0.3 * smoothstep(-0.08, 0.06, t);
+          smoothstep(0.82, 0.35, d) * smoothstep(0.1, 0.3, t) * smoothstep(0.97, 0.6, t);
+      r = mix(r, 1.0, core), g = mix(g, 1.0, core), b = mix(b, 0.97, core);
+      const double blue = smoothstep(0.24, 0.04, t) * smoothstep(0.1, 0.55, d + 0.3 * (0.24 - t));
+      r = mix(r, 0.2, blue), g = mix(g, 0.3, blue), b = mix(b, 0.95, blue);
+      // A crisp edge (a real flame's luminous zone ends sharply) and a pointed
+      // tip; the blue base is fainter and the root, below the wick top, fades.
+      double a = smoothstep(1.0, 0.9, d) * smoothstep(1.0, 0.93, t);
+      a *= 1 - 0.55 * blue;
+      a *= 0.55 + 0.45 * smoothstep(-0.08, 0.04, t);
       uint8_t* p = row + px * 4;
       p[0] = static_cast<uint8_t>(std::lround(std::clamp(r, 0.0, 1.0) * 255));
       p[1] = static_cast<uint8_t>(std::lround(std::clamp(g, 0.0, 1.0) * 255));

@@ -42,13 +42,18 @@ Image make_default_fire_profile(int width, int height) {
       const double r = (col + 0.5) / width;
       uint8_t* px = img.row(row) + col * 4;
       if (half_width <= 0 || row == 0 || col == width - 1) continue;  // the rim stays empty
-      const double inside = 1.0 - smoothstep(half_width * 0.55, half_width, r);
+      // Density falls linearly from the axis to the rim at this height (and
+      // towards the top): a field whose level sets are nested flame outlines,
+      // so the sheets' threshold (perlinfire.frag) cuts one clean outline and
+      // the noise, moving lookups, tears it into tongues.
+      const double inside = 1.0 - r / half_width;
       if (inside <= 0) continue;
       const double core = 1.0 - std::min(1.0, r / half_width);
       const double heat = std::clamp((1.0 - v) * 0.85 * (0.45 + 0.55 * core) + 0.12, 0.0, 1.0);
       double rgb[3];
       heat_colour(heat, rgb);
-      const double density = inside * (0.35 + 0.65 * (1.0 - v));
+      const double density =
+          std::min(1.0, inside * 1.4) * (0.45 + 0.55 * smoothstep(0.0, 0.85, 1.0 - v));
       // Straight (not premultiplied) alpha, as a PNG stores it.
       px[0] = to_byte(rgb[0]);
       px[1] = to_byte(rgb[1]);

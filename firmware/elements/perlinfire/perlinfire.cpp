@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/fixed.h"
+#include "core/flicker.h"
 #include "core/image.h"
 #include "core/log.h"
 #include "elements/perlinfire/fire_profile.h"
@@ -57,6 +58,12 @@ struct FireSettings {
   Fixed evolve = Fixed::from_ratio(1, 2);      // 4-D kinds: lattice units per second along w
   float displacement = 0.8f;
   float intensity = 4.0f;
+  FireShading shading = FireShading::kSheets;
+  float sheet_edge = 0.3f, sheet_softness = 0.6f;  // density threshold of the flame sheets
+  float rise_growth = 0.1f;  // displacement at the base relative to the top's (sheets)
+  float wobble = 0.3f;       // radial share of the displacement (sheets)
+  double stretch = 1.0;      // noise cells are this much taller than wide
+  float breathing = 0.0f;    // how much the flame's height swells and falls (sheets)
   Vec3 color{1, 1, 1};
   bool additive = true;
   float obstacle = 0;  // fraction of the volume's height that is solid (logs, grate)
@@ -69,6 +76,8 @@ struct FireSettings {
   double target_fps = 30;
   float min_scale = 0.25f;
 };
+
+Program make_composite_program(FireShading shading);
 
 // GL texture set-up shared by the tables.
 Texture make_table_texture(GLenum internal, GLenum format, GLenum type, const void* data) {
@@ -128,7 +137,8 @@ class PerlinFire final : public Element {
         governor_(QualityGovernor::make_ladder(s.quality, std::min(6, s.quality.steps),
                                                std::min(1, s.quality.octaves),
                                                std::min(s.min_scale, s.quality.scale)),
-                  governor_settings(s)) {
+                  governor_settings(s)),
+        breath_(seed ^ 0x62726561746865ULL) {
     static constexpr const char* kKindDefine[] = {"simplex3d", "flow3d", "simplex4d", "perlin4d"};
     const auto body = shaders::find("perlinfire.frag");
     if (body.empty()) throw RuntimeError("gles_shaders/perlinfire.frag: not built in");
@@ -137,8 +147,8 @@ class PerlinFire final : public Element {
     program_ = Program::from_source("perlinfire.vert", vert,
                                     std::string("perlinfire_noise.frag + perlinfire.frag (") +
                                         kKindDefine[static_cast<int>(s.noise)] + ")",
-                                    perlinfire_fragment_source(body, s.noise));
-    composite_ = Program::from_library("fullscreen.vert", "perlinfire_composite.frag");
+                                    perlinfire_fragment_source(body, s.noise, s.shading));
+    composite_ = make_composite_program(s.shading);
     vao_ = make_vertex_array();
     locate_uniforms();
 
@@ -174,6 +184,9 @@ class PerlinFire final : public Element {
     drift_x_.raw = (drift_x_.raw + (w.x * s_.wind_drift * lattice_per_height * step.dt).raw) % wrap;
     drift_z_.raw = (drift_z_.raw + (w.z * s_.wind_drift * lattice_per_height * step.dt).raw) % wrap;
     time_ = step.time;
+    // Breathing: the whole fire swells and falls as its tongues do (about
+    // 0.55..1.35 of the mean turbulence subtracted).
+    breath_now_ = breath_.at(step.time);
     uniforms_dirty_ = true;
   }
 
@@ -231,7 +244,7 @@ class PerlinFire final : public Element {
     const Vec3 ws = s_.size * (1.0f / s_.size.y);
     glUniform3f(u_.world_scale, ws.x, ws.y, ws.z);
     const float fq = static_cast<float>(s_.frequency);
-    glUniform3f(u_.noise_scale, ws.x * fq, ws.y * fq, ws.z * fq);
+    glUniform3f(u_.noise_scale, ws.x * fq, ws.y * fq / static_cast<float>(s_.stretch), ws.z * fq);
     // Steps of equal length: `steps` of them across the volume's width.
     glUniform1f(u_.step_length, std::max(ws.x, ws.z) / static_cast<float>(q.steps));
     glUniform1i(u_.max_steps, 2 * q.steps);
@@ -248,8 +261,17 @@ class PerlinFire final : public Element {
     float weight_sum = 0;
     for (int o = 0; o < std::min(q.octaves, kMaxOctaves); ++o)
       weight_sum += weights_[static_cast<size_t>(o)];
-    glUniform1f(u_.turbulence_mean, 0.22f * weight_sum);
+    const float breath = 1.0f + s_.breathing * (breath_now_.to_float() - 1.0f);
+    glUniform1f(u_.turbulence_mean, 0.22f * weight_sum * breath);
     glUniform1f(u_.intensity, s_.intensity);
+    glUniform2f(u_.sheet, s_.sheet_edge, s_.sheet_softness);
+    glUniform1f(u_.rise_growth, s_.rise_growth);
+    glUniform1f(u_.wobble, s_.wobble);
+    // Sheets colour after upscaling, so a reduced scale keeps crisp edges.
+    glUniform1i(u_.ramp_here, offscreen ? 0 : 1);
+    // Sheets sample slabs, not steps: a third as many (the quality ladder's
+    // steps 20 -> 6 give 6 -> 2 slabs).
+    glUniform1i(u_.slices, std::clamp(q.steps / 3, 2, 16));
     glUniform1f(u_.obstacle, s_.obstacle > 0 ? s_.obstacle : -1e9f);
     glUniform3f(u_.color, s_.color.x, s_.color.y, s_.color.z);
     bind_texture(0, perm_, u_.perm);
@@ -272,6 +294,7 @@ class PerlinFire final : public Element {
       composite_.use();
       glUniform2f(u_.uv_per_pixel, static_cast<float>(sub_w) / f.width / target_w_,
                   static_cast<float>(sub_h) / f.height / target_h_);
+      glUniform3f(u_.composite_color, s_.color.x, s_.color.y, s_.color.z);
       bind_texture(4, target_, u_.image);
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
@@ -314,6 +337,12 @@ class PerlinFire final : public Element {
     u_.grad3 = u("u_grad3");
     u_.grad4 = u("u_grad4");
     u_.profile = u("u_profile");
+    u_.sheet = u("u_sheet");
+    u_.rise_growth = u("u_rise_growth");
+    u_.wobble = u("u_wobble");
+    u_.ramp_here = u("u_ramp_here");
+    u_.slices = u("u_slices");
+    u_.composite_color = composite_.uniform("u_color");
     u_.image = composite_.uniform("u_image");
     u_.uv_per_pixel = composite_.uniform("u_uv_per_pixel");
   }
@@ -389,8 +418,10 @@ class PerlinFire final : public Element {
     uniforms_dirty_ = false;
     const int64_t t = time_.raw;  // Q16.16 seconds
     const int64_t wrap = period_ << Fixed::kFracBits;
+    // Lattice cells per fire height along y (taller cells when stretched).
     const int64_t rise =
-        (t * Fixed::from_double(s_.frequency).raw >> Fixed::kFracBits) * s_.speed.raw >>
+        (t * Fixed::from_double(s_.frequency / s_.stretch).raw >> Fixed::kFracBits) *
+            s_.speed.raw >>
         Fixed::kFracBits;
     const int64_t evolve = t * s_.evolve.raw >> Fixed::kFracBits;
     const int64_t spin = t * s_.flow_speed.raw >> Fixed::kFracBits;  // radians, Q16.16
@@ -411,7 +442,8 @@ class PerlinFire final : public Element {
   struct Uniforms {
     GLint mvp, box_min, box_max, camera, world_scale, noise_scale, step_length, max_steps, bound,
         octaves, weights, offset, flow_cs, time4, lean, displacement, turbulence_mean, intensity,
-        obstacle, color, perm, grad3, grad4, profile, image, uv_per_pixel;
+        obstacle, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble, ramp_here, slices,
+        image, uv_per_pixel, composite_color;
   };
 
   FireSettings s_;
@@ -428,7 +460,8 @@ class PerlinFire final : public Element {
   std::array<float, kMaxOctaves> weights_{}, time4_{};
   std::array<float, kMaxOctaves * 3> offsets_{};
   std::array<float, kMaxOctaves * 2> flow_cs_{};
-  Fixed lean_x_, lean_z_, drift_x_, drift_z_, time_;
+  Flicker breath_;
+  Fixed lean_x_, lean_z_, drift_x_, drift_z_, time_, breath_now_ = Fixed::from_int(1);
   bool uniforms_dirty_ = true;
 };
 
@@ -457,12 +490,30 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.quality.octaves = static_cast<int>(r.integer("octaves", 4, 1, kMaxOctaves));
   s.weight = r.number("weight", s.weight, 0, 4);
   s.gain = r.number("gain", s.gain, 0, 1);
+  s.evolve = r.fixed("evolve", s.evolve.to_double(), 0, 10);
+  s.shading = r.string("shading", "sheets", {"sheets", "profile"}) == "sheets"
+                  ? FireShading::kSheets
+                  : FireShading::kProfile;
+  if (s.shading == FireShading::kProfile) {  // the paper's soft look keeps its old defaults
+    s.intensity = 4.0f;
+  } else {
+    // Tuned against the real fire clips (../shared/eval): tall torn tongues
+    // that decorrelate in about 40 ms, breathing, cores clipping to white.
+    s.displacement = 3.4f, s.intensity = 11.0f, s.speed = Fixed::from_ratio(11, 10);
+    s.frequency = 7.0, s.stretch = 3.0, s.flow_speed = Fixed::from_int(4);
+    s.rise_growth = 0.1f, s.wobble = 0.3f, s.sheet_softness = 0.6f, s.breathing = 0.5f;
+  }
+  s.displacement = static_cast<float>(r.number("displacement", s.displacement, 0, 4));
+  s.intensity = static_cast<float>(r.number("intensity", s.intensity, 0, 100));
+  s.sheet_edge = static_cast<float>(r.number("sheet_edge", s.sheet_edge, 0.01, 0.99));
+  s.sheet_softness = static_cast<float>(r.number("sheet_softness", s.sheet_softness, 0.001, 2));
+  s.rise_growth = static_cast<float>(r.number("rise_growth", s.rise_growth, 0, 1));
+  s.wobble = static_cast<float>(r.number("wobble", s.wobble, 0, 2));
+  s.stretch = r.number("stretch", s.stretch, 0.25, 8);
+  s.breathing = static_cast<float>(r.number("breathing", s.breathing, 0, 2));
   s.speed = r.fixed("speed", s.speed.to_double(), 0, 10);
   s.frequency = r.number("frequency", s.frequency, 0.1, 32);
   s.flow_speed = r.fixed("flow_speed", s.flow_speed.to_double(), 0, 20);
-  s.evolve = r.fixed("evolve", s.evolve.to_double(), 0, 10);
-  s.displacement = static_cast<float>(r.number("displacement", s.displacement, 0, 4));
-  s.intensity = static_cast<float>(r.number("intensity", s.intensity, 0, 100));
   s.color = r.color("color", s.color);
   s.additive = r.string("blend", "additive", {"additive", "alpha"}) == "additive";
   s.obstacle = static_cast<float>(r.number("obstacle_height", 0, 0, 0.95));
@@ -478,22 +529,43 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   return spec;
 }
 
+// The upscaling pass: "#define PF_SHADING", the ramp, then the composite.
+Program make_composite_program(FireShading shading) {
+  const auto vert = shaders::find("fullscreen.vert");
+  const auto ramp = shaders::find("fire_ramp.frag");
+  const auto body = shaders::find("perlinfire_composite.frag");
+  if (vert.empty() || ramp.empty() || body.empty())
+    throw RuntimeError("gles_shaders/perlinfire_composite.frag: not built in");
+  std::string src = "#version 300 es\n#define PF_SHADING " +
+                    std::to_string(static_cast<int>(shading)) + "\nprecision highp float;\n";
+  src += drop_version_line(ramp);
+  src += "\n";
+  src += drop_version_line(body);
+  return Program::from_source("fullscreen.vert", vert, "fire_ramp.frag + perlinfire_composite.frag",
+                              src);
+}
+
 }  // namespace
 
-std::string perlinfire_fragment_source(std::string_view body, FireNoise kind) {
+std::string perlinfire_fragment_source(std::string_view body, FireNoise kind, FireShading shading) {
   const auto library = shaders::find("perlinfire_noise.frag");
   if (library.empty()) throw RuntimeError("gles_shaders/perlinfire_noise.frag: not built in");
-  char defines[256];
+  const auto ramp = shaders::find("fire_ramp.frag");
+  if (ramp.empty()) throw RuntimeError("gles_shaders/fire_ramp.frag: not built in");
+  char defines[320];
   std::snprintf(defines, sizeof defines,
-                "#version 300 es\n#define PF_NOISE_KIND %d\n#define PF_SIMPLEX_R2 %.9g\n"
+                "#version 300 es\n#define PF_NOISE_KIND %d\n#define PF_SHADING %d\n"
+                "#define PF_SIMPLEX_R2 %.9g\n"
                 "#define PF_SIMPLEX3_SCALE %#.9g\n#define PF_SIMPLEX4_SCALE %#.9g\n"
                 "#define PF_PERLIN4_SCALE %#.9g\n",
-                static_cast<int>(kind), NoiseConstants::kSimplexRadius2,
+                static_cast<int>(kind), static_cast<int>(shading), NoiseConstants::kSimplexRadius2,
                 NoiseConstants::kSimplex3Scale, NoiseConstants::kSimplex4Scale,
                 NoiseConstants::kPerlin4Scale);
   // Keep line numbers of the library in messages close: the library follows the defines.
   std::string src = defines;
   src += drop_version_line(library);
+  src += "\n";
+  src += drop_version_line(ramp);
   src += "\n";
   src += drop_version_line(body);
   return src;

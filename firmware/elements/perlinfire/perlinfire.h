@@ -15,11 +15,19 @@ namespace candela {
 
 enum class FireNoise { kSimplex3d, kFlow3d, kSimplex4d, kPerlin4d };
 
+// How the march turns what it meets into light: kSheets cuts the profile's
+// density at a sharp threshold (tongues, crisp edges, clipped cores, a
+// black-body ramp; the default), kProfile sums the profile's colours (the
+// paper's way: soft and gaseous).
+enum class FireShading { kProfile = 0, kSheets = 1 };
+
 // The fire's fragment shader text: "#version 300 es", the PF_* defines (noise
-// kind and the constants of noise_tables.h), gles_shaders/perlinfire_noise.frag
-// and then `body` (a whole shader file; its #version line is dropped). The
-// tests build their noise probes with it too.
-std::string perlinfire_fragment_source(std::string_view body, FireNoise kind);
+// kind, shading and the constants of noise_tables.h),
+// gles_shaders/perlinfire_noise.frag, gles_shaders/fire_ramp.frag and then
+// `body` (a whole shader file; its #version line is dropped). The tests build
+// their noise probes with it too.
+std::string perlinfire_fragment_source(std::string_view body, FireNoise kind,
+                                       FireShading shading = FireShading::kSheets);
 
 const ElementKind& perlinfire_kind();
 

@@ -1,0 +1,39 @@
+#version 300 es
+// A hearth's logs, all instanced in one draw: the mesh (along, around, cap)
+// wrapped round the axis from a_from to a_to, a little irregular (logs are
+// not lathe-turned), with the end discs closing it.
+precision highp float;
+
+layout(location = 0) in vec3 a_mesh;   // along 0..1, around 0..1, cap -2..2 (0: the side)
+layout(location = 1) in vec4 a_from;   // xyz, radius
+layout(location = 2) in vec4 a_to;     // xyz, seed
+
+uniform mat4 u_view_projection;
+
+out vec3 v_world;
+out vec3 v_normal;
+out vec3 v_log;  // along (m), around (0..1), 1 on the end discs
+out float v_seed;
+out float v_radius;
+
+void main() {
+  vec3 axis = a_to.xyz - a_from.xyz;
+  float len = length(axis);
+  vec3 w = axis / len;
+  vec3 u = normalize(abs(w.y) < 0.9 ? cross(w, vec3(0.0, 1.0, 0.0)) : cross(w, vec3(1.0, 0.0, 0.0)));
+  vec3 v = cross(u, w);  // points mostly up
+  float ang = a_mesh.y * 6.2831853;
+  bool cap = a_mesh.z != 0.0;
+  bool centre = abs(a_mesh.z) > 1.5;
+  // Knobbly: the radius varies slowly along and around the log.
+  float r = a_from.w * (1.0 + 0.07 * sin(a_mesh.x * 9.0 + a_to.w) + 0.05 * sin(ang * 3.0 + a_to.w * 2.0));
+  r *= 1.0 - 0.12 * smoothstep(0.9, 1.0, abs(a_mesh.x * 2.0 - 1.0));  // rounded ends
+  vec3 radial = u * cos(ang) + v * sin(ang);
+  vec3 p = a_from.xyz + axis * a_mesh.x + (centre ? vec3(0.0) : radial * r);
+  v_world = p;
+  v_normal = cap ? w * sign(a_mesh.z) : radial;
+  v_log = vec3(a_mesh.x * len, a_mesh.y, cap ? 1.0 : 0.0);
+  v_seed = a_to.w;
+  v_radius = cap && !centre ? 1.0 : (centre ? 0.0 : 1.0);
+  gl_Position = u_view_projection * vec4(p, 1.0);
+}

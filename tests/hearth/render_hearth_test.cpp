@@ -1,0 +1,142 @@
+// The hearth rendered headless: the ember bed glows and pulses, the logs are
+// lit by the fire's flicker, a front log hides a fire's feet, and bad
+// settings name their key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "scene/scene_file.h"
+#include "support/render_harness.h"
+
+namespace candela {
+namespace {
+
+constexpr int kW = 160, kH = 90;
+
+std::string scene(const std::string& hearth, const std::string& extra = "") {
+  return R"(
+[background]
+color = "#000000"
+[camera]
+position = [0.0, 0.5, 1.4]
+target = [0.0, 0.1, 0.0]
+fov = 40
+[[element]]
+kind = "hearth"
+)" + hearth +
+         "\n" + extra;
+}
+
+struct Lit {
+  double mean = 0;
+  double red_share = 0;  // of the light, how much is red (ember and fire colours)
+};
+
+Lit measure(const test::Frame& f, int x0, int y0, int x1, int y1) {
+  double r = 0, g = 0, b = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const test::Rgba c = f.at(x, y);
+      r += c.r, g += c.g, b += c.b;
+    }
+  const double n = static_cast<double>((x1 - x0) * (y1 - y0));
+  return {(0.299 * r + 0.587 * g + 0.114 * b) / n, r / std::max(1.0, r + g + b)};
+}
+
+TEST(HearthRender, EmbersGlowRedInTheBedAndNothingOutsideIt) {
+  test::RenderHarness h(scene("width = 0.8\ndepth = 0.4\nlogs = 0"), kW, kH);
+  h.run(10);
+  const test::Frame f = h.read();
+  // The bed's middle is lit, warm; the top of the frame (sky above the bed) is black.
+  // The bed's middle (the floor's origin) projects a little below the frame's centre.
+  const Lit bed = measure(f, kW / 2 - 10, kH * 55 / 100, kW / 2 + 10, kH * 65 / 100);
+  const Lit sky = measure(f, 0, 0, kW, kH / 4);
+  EXPECT_GT(bed.mean, 8.0);
+  EXPECT_GT(bed.red_share, 0.5);
+  EXPECT_EQ(sky.mean, 0.0);
+}
+
+TEST(HearthRender, EmbersPulseOverTime) {
+  test::RenderHarness h(scene("width = 0.8\ndepth = 0.4\nlogs = 0"), kW, kH);
+  h.run(5);
+  const test::Frame a = h.read();
+  h.run(90);
+  const test::Frame b = h.read();
+  int changed = 0, lit = 0;
+  for (size_t i = 0; i < a.rgba.size(); i += 4) {
+    lit += a.rgba[i] > 20;
+    changed += std::abs(a.rgba[i] - b.rgba[i]) > 6;
+  }
+  EXPECT_GT(lit, 100);
+  EXPECT_GT(changed, lit / 10);
+}
+
+TEST(HearthRender, LogsAreDrawnAndLitByTheFire) {
+  const std::string logs =
+      "[[element.log]]\nfrom = [-0.35, 0.06, 0.0]\nto = [0.35, 0.06, 0.0]\nradius = 0.06\n";
+  const std::string bed = "width = 0.8\ndepth = 0.4\nembers = 0\n";
+  test::RenderHarness bright(scene(bed + "light_strength = 2.0\n" + logs), kW, kH);
+  bright.run(3);
+  const test::Frame fb = bright.read();
+  test::RenderHarness dim(scene(bed + "light_strength = 0.2\n" + logs), kW, kH);
+  dim.run(3);
+  const test::Frame fd = dim.read();
+  // The log's middle, on screen just below the frame's centre.
+  const Lit b = measure(fb, kW / 2 - 15, kH / 2, kW / 2 + 15, kH / 2 + 12);
+  const Lit d = measure(fd, kW / 2 - 15, kH / 2, kW / 2 + 15, kH / 2 + 12);
+  EXPECT_GT(b.mean, 6.0);
+  EXPECT_GT(b.mean, 2.5 * d.mean);  // the firelight is what lights it
+  // Beside the log (no bed, no log) nothing is drawn.
+  EXPECT_EQ(measure(fb, 0, 0, 12, kH).mean, 0.0);
+}
+
+TEST(HearthRender, AFrontLogHidesTheFeetOfAFire) {
+  // A log across the front of the bed, and a Perlin fire standing on the bed
+  // behind it: where the log crosses the fire, the log (dark wood) shows, not
+  // the flame's bright base.
+  const std::string hearth =
+      "width = 0.8\ndepth = 0.4\nembers = 0\nlight_strength = 0.3\n"
+      "[[element.log]]\nfrom = [-0.4, 0.07, 0.17]\nto = [0.4, 0.07, 0.17]\nradius = 0.07\n";
+  const std::string fire =
+      "[[element]]\nkind = \"perlinfire\"\nposition = [0.0, 0.0, 0.0]\nsize = [0.5, 0.6, 0.3]\n";
+  test::RenderHarness with(scene(hearth, fire), kW, kH);
+  with.run(6);
+  const test::Frame f = with.read();
+  test::RenderHarness fire_only(scene("width = 0.8\ndepth = 0.4\nembers = 0\nlogs = 0", fire), kW,
+                                kH);
+  fire_only.run(6);
+  const test::Frame g = fire_only.read();
+  // Where the front log is on screen (its centre line projects near y = 0.6 kH).
+  int x0 = kW / 2 - 12, x1 = kW / 2 + 12, y0 = kH * 60 / 100 - 2, y1 = kH * 60 / 100 + 2;
+  const Lit covered = measure(f, x0, y0, x1, y1), open = measure(g, x0, y0, x1, y1);
+  EXPECT_GT(open.mean, 60.0);              // the fire's base is bright there
+  EXPECT_LT(covered.mean, open.mean / 3);  // and the log hides it
+}
+
+TEST(HearthRender, BadSettingsNameTheKey) {
+  try {
+    load_scene_text(scene("logs = 40"), "hearth.toml");
+    FAIL() << "accepted logs = 40";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "element[0].logs");
+  }
+  try {
+    load_scene_text(
+        scene("[[element.log]]\nfrom = [0, 0.05, 0]\nto = [0.01, 0.05, 0]\nradius = 0.05"),
+        "hearth.toml");
+    FAIL() << "accepted a log shorter than its radius";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "element[0].log[0].to");
+  }
+  try {
+    load_scene_text(scene("widht = 1"), "hearth.toml");
+    FAIL() << "accepted a typo";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "element[0].widht");
+  }
+}
+
+}  // namespace
+}  // namespace candela
