@@ -5,15 +5,21 @@
 # puts, one row per scene, four of its frames (1, 4, 7 and 10 s in) beside the
 # first frames of the real clips of its kind (candles for the candle scenes,
 # real-speed fires, in colour, for the eigen and Perlin fires). Needs ImageMagick
-# (montage). Default OUT: build/realism/contact-sheet.png.
+# (montage). Default OUT: build/realism/contact-sheet.png. RENDERS=DIR keeps the
+# rendered frames there (DIR/a_candle_calm/ ...), e.g. to measure them afterwards.
 set -u
 . "$(dirname "$0")/common.sh"
 need_shared
 command -v montage >/dev/null || { echo "needs ImageMagick's montage (apt-get install imagemagick)" >&2; exit 2; }
 out_png=${1:-$build/realism/contact-sheet.png}
 mkdir -p "$(dirname "$out_png")"
-work=$(mktemp -d "${TMPDIR:-/tmp}/candela-sheet.XXXXXX")
-trap 'rm -rf "$work"' EXIT
+if [ -n "${RENDERS:-}" ]; then
+  work=$RENDERS
+  mkdir -p "$work"
+else
+  work=$(mktemp -d "${TMPDIR:-/tmp}/candela-sheet.XXXXXX")
+  trap 'rm -rf "$work"' EXIT
+fi
 
 candles="candle_schodl_singan candle_red_ngasocute candle_breeze_tfg_flameshaken candle_triplet_oscillating_cpldcpu"
 fires="campfire_night_arvideo fireplace_logs_grpatter fireplace_logs_meditation"
@@ -45,13 +51,13 @@ while read -r name seed kind; do
     f="$flames/$c/frames_rgb/00001.png"
     [ -f "$f" ] || f="$flames/$c/frames/00001.png"
     [ -f "$f" ] || continue
-    tiles+=(-label "real: ${c%%_*}_$(echo "$c" | cut -d_ -f2)" "$f")
+    tiles+=(-label "real: $c" "$f")
     n=$((n + 1))
   done
   while [ $n -lt 3 ]; do tiles+=(-label "" "xc:black"); n=$((n + 1)); done
 done <<<"$rows"
 
-montage -background '#202020' -fill white -pointsize 12 "${tiles[@]}" \
+montage -background '#202020' -fill white -pointsize 11 "${tiles[@]}" \
   -tile 7x -geometry 192x192+4+4 "$out_png"
 echo "$out_png: rows a..e = candle calm, candle breeze, eigen graph, eigen arp, Perlin fire;" \
   "columns: 4 rendered frames (1, 4, 7, 10 s), then first frames of real clips of the kind"
