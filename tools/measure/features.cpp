@@ -126,7 +126,7 @@ double tau(const Frames& v, double fps) {
     for (size_t i = 0; i < k; ++i) x[k * t + i] = avg[px * t + keep[i]] - pmean[i];
   double denom = 0;
   for (double e : x) denom += e * e;
-  const int last = std::min(n / 2, static_cast<int>(fps * 3));
+  const int last = static_cast<int>(std::min<double>(n / 2, std::floor(fps * 3)));
   double prev = 1.0;
   for (int lag = 1; lag < last; ++lag) {
     double s = 0;
