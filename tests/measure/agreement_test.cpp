@@ -19,6 +19,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <ostream>
 
 #include "measure/measure.h"
 
@@ -36,6 +37,8 @@ struct Clip {
   const char* name;
   double fps;
 };
+// So ctest lists the clip, not its bytes.
+void PrintTo(const Clip& c, std::ostream* os) { *os << c.name << " at " << c.fps << " fps"; }
 
 const Clip kClips[] = {
     {"candle_schodl_singan", 30},          {"candle_red_ngasocute", 25},
