@@ -26,6 +26,7 @@ def clean(x):
 
 def main(a):
     eval_dir, limit, out = a[0], int(a[1]), a[2]
+    sys.dont_write_bytecode = True  # leave the shared folder as it is
     sys.path.insert(0, eval_dir)
     import flame_features as ff
     import realism as rl
