@@ -25,7 +25,7 @@ build=(
   libcamera-dev
 )
 tests=(
-  ffmpeg python3 python3-numpy xvfb xauth
+  ffmpeg python3 python3-numpy python3-scipy python3-pil imagemagick xvfb xauth
   # virtual board (board/virtual): QEMU + Debian kernel + out-of-tree drivers
   qemu-system-x86 busybox-static cpio kmod gzip xz-utils bc flex bison libelf-dev
   v4l-utils libdrm-tests
