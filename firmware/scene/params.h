@@ -28,9 +28,8 @@ class ParamReader {
   void consume(std::string_view key) { used_.emplace(key); }
 
   double number(std::string_view key, double def, double min, double max);
-  Fixed fixed(std::string_view key, double def, double min, double max) {
-    return Fixed::from_double(number(key, def, min, max));
-  }
+  // A number held as Q16.16: [min, max] must lie inside what Fixed holds.
+  Fixed fixed(std::string_view key, double def, double min, double max);
   int64_t integer(std::string_view key, int64_t def, int64_t min, int64_t max);
   bool boolean(std::string_view key, bool def);
   std::string string(std::string_view key, std::string_view def,

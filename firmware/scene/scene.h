@@ -3,6 +3,7 @@
 // draw() per frame; keys become wind events.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -17,7 +18,10 @@ class Scene : public DisplayEvents {
  public:
   // Needs a current GL context. An element that fails to create is logged and
   // left out: the display never goes dark because of one bad element.
-  Scene(const SceneDesc& desc, uint64_t seed_override = 0);
+  // `stop`, when set (a signal), ends the building early: the scene then has
+  // the elements made so far.
+  Scene(const SceneDesc& desc, uint64_t seed_override = 0,
+        const std::atomic<bool>* stop = nullptr);
   void update(const StepContext& step);
   void draw(FrameContext& frame);
   void on_key(Key key) override;
