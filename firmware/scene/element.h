@@ -51,6 +51,9 @@ class Element {
   virtual ~Element() = default;
   virtual void update(const StepContext& step) = 0;
   virtual void draw(const FrameContext& frame, DrawPass pass) = 0;
+  // How many candles this element shows alight (the control socket's
+  // `state`); -1: it has no candles. Called once per frame: no allocation.
+  virtual int candles_lit() const { return -1; }
 };
 
 class ElementSpec {

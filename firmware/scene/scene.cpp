@@ -56,4 +56,11 @@ void Scene::draw(FrameContext& frame) {
 
 void Scene::on_key(Key key) { wind_.on_key(key); }
 
+int Scene::candles_lit() const {
+  int lit = -1;
+  for (const auto& e : elements_)
+    if (const int n = e->candles_lit(); n >= 0) lit = (lit < 0 ? 0 : lit) + n;
+  return lit;
+}
+
 }  // namespace candela

@@ -29,6 +29,8 @@ class Scene : public DisplayEvents {
   WindField& wind() { return wind_; }
   size_t element_count() const { return elements_.size(); }
   size_t failed_elements() const { return failed_; }
+  // Candles alight over all elements; -1 if no element has candles.
+  int candles_lit() const;
 
  private:
   Vec3 background_;
