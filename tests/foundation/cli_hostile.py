@@ -85,6 +85,10 @@ def case_special_files():
                        ("calm.sway_table", '[[element]]\nkind = "candles"\n[element.calm]\n'
                                            'sway_table = "fifo"\n[[element.candle]]\n')]:
         check_scene(table, 2, key, "not a regular file (a FIFO)")
+    # A broken profile PNG names the scene and key too (it named only the PNG).
+    write("bad.png", "not a png")
+    check_scene('[[element]]\nkind = "perlinfire"\nprofile = "bad.png"\n', 2,
+                "scene.toml: element[0].profile: expected a profile PNG:", "bad.png: expected a PNG file")
 
 
 def case_scene_bounds():
