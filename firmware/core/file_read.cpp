@@ -114,10 +114,7 @@ BoundedFile BoundedFile::open(const std::string& path, FileKind kind) {
 }
 
 BoundedFile::BoundedFile(BoundedFile&& o) noexcept
-    : fd_(std::exchange(o.fd_, -1)),
-      size_(o.size_),
-      path_(std::move(o.path_)),
-      kind_(o.kind_) {}
+    : fd_(std::exchange(o.fd_, -1)), size_(o.size_), path_(std::move(o.path_)), kind_(o.kind_) {}
 
 BoundedFile& BoundedFile::operator=(BoundedFile&& o) noexcept {
   if (this != &o) {
@@ -179,7 +176,8 @@ std::string regular_file_problem(const std::string& path) {
   const int fd = open_nonblocking(path, &why);
   if (fd < 0) return why;
   struct stat st {};
-  if (fstat(fd, &st) != 0) why = std::string("cannot stat: ") + std::strerror(errno);
+  if (fstat(fd, &st) != 0)
+    why = std::string("cannot stat: ") + std::strerror(errno);
   else if (!S_ISREG(st.st_mode))
     why = std::string("not a regular file (") + type_of(st.st_mode) + ")";
   ::close(fd);

@@ -9,8 +9,8 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <climits>
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -55,9 +55,9 @@ bool parse_number(std::string_view w, double lo, double hi, double& out) {
 
 // Words echoed in errors are cut short.
 std::string echo(std::string_view w) {
-  return w.size() <= 40 ? std::string(w)
-                        : std::string(w.substr(0, 40)) + "... (" + std::to_string(w.size()) +
-                              " characters)";
+  return w.size() <= 40
+             ? std::string(w)
+             : std::string(w.substr(0, 40)) + "... (" + std::to_string(w.size()) + " characters)";
 }
 
 // Unit vector of where wind from `side` blows to.
@@ -179,7 +179,8 @@ ControlServer::ControlServer(std::string path, int64_t idle_timeout_ms)
   dir = dir.substr(0, dir.find_last_of('/') == std::string::npos ? 0 : dir.find_last_of('/') + 1);
   std::string tmpl = (dir.empty() ? std::string("./") : dir) + ".candela-ctl-XXXXXX";
   const std::string tmp_dir = mkdtemp(tmpl.data()) ? tmpl : std::string();
-  if (tmp_dir.empty()) fail(std::string("cannot create a folder beside it: ") + std::strerror(errno));
+  if (tmp_dir.empty())
+    fail(std::string("cannot create a folder beside it: ") + std::strerror(errno));
   const std::string tmp_path = tmp_dir + "/s";
   std::strncpy(addr.sun_path, tmp_path.c_str(), sizeof addr.sun_path - 1);
   int err = 0;

@@ -20,8 +20,7 @@ class Scene : public DisplayEvents {
   // left out: the display never goes dark because of one bad element.
   // `stop`, when set (a signal), ends the building early: the scene then has
   // the elements made so far.
-  Scene(const SceneDesc& desc, uint64_t seed_override = 0,
-        const std::atomic<bool>* stop = nullptr);
+  Scene(const SceneDesc& desc, uint64_t seed_override = 0, const std::atomic<bool>* stop = nullptr);
   void update(const StepContext& step);
   void draw(FrameContext& frame);
   void on_key(Key key) override;

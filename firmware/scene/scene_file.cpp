@@ -23,9 +23,9 @@ namespace {
 void check_nesting(std::string_view t, const std::string& name) {
   int line = 1, dots = 0, brackets = 0;
   auto fail = [&](const std::string& what) {
-    throw ConfigError(name, "line " + std::to_string(line),
-                      what + " (more than " + std::to_string(kMaxSceneNesting) +
-                          " levels; a scene needs a few)");
+    throw ConfigError(
+        name, "line " + std::to_string(line),
+        what + " (more than " + std::to_string(kMaxSceneNesting) + " levels; a scene needs a few)");
   };
   const size_t n = t.size();
   for (size_t i = 0; i < n; ++i) {
@@ -113,8 +113,9 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
     const double len = std::sqrt(static_cast<double>(d.x) * d.x + static_cast<double>(d.y) * d.y +
                                  static_cast<double>(d.z) * d.z);
     if (!(len > 1e-4))
-      cam.fail("target", "expected a point away from camera.position (the camera must look at "
-                         "something), got the same point");
+      cam.fail("target",
+               "expected a point away from camera.position (the camera must look at "
+               "something), got the same point");
     if (std::fabs(d.y / len) > 0.9999)
       cam.fail("target", std::string("expected the camera to look less than 89 degrees ") +
                              (d.y < 0 ? "down" : "up") +
@@ -133,8 +134,8 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
       throw ConfigError(name, "element", "expected an array of tables ([[element]])");
     if (arr->size() > kMaxElements)
       throw ConfigError(name, "element",
-                        "expected at most " + std::to_string(kMaxElements) + " [[element]] tables, got " +
-                            std::to_string(arr->size()));
+                        "expected at most " + std::to_string(kMaxElements) +
+                            " [[element]] tables, got " + std::to_string(arr->size()));
     unsigned cost = 0;
     for (size_t i = 0; i < arr->size(); ++i) {
       const toml::table* t = arr->get(i)->as_table();
@@ -180,7 +181,8 @@ SceneDesc load_scene_file(const std::string& path) {
 std::vector<std::string> scene_problems(const SceneDesc& scene) {
   std::vector<std::string> out;
   if (scene.elements.empty())
-    out.push_back(scene.file + ": element: the scene has no [[element]]; the display would stay black");
+    out.push_back(scene.file +
+                  ": element: the scene has no [[element]]; the display would stay black");
   for (const auto& e : scene.elements) {
     const std::string p = e.spec->problem();
     if (!p.empty()) out.push_back(scene.file + ": " + p);

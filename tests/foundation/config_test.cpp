@@ -147,9 +147,12 @@ TEST(SceneConfig, HugeIntegersInNumberKeysAreRangeChecked) {
 
 // Issue 15 (11): degenerate scenes that used to pass.
 TEST(SceneConfig, DegenerateCameraAndDisplayAreRefused) {
-  EXPECT_EQ(error_of("[camera]\nposition = [1, 1, 1]\ntarget = [1, 1, 1]\n").key(), "camera.target");
-  EXPECT_EQ(error_of("[camera]\nposition = [0, 2, 0]\ntarget = [0, 0, 0]\n").key(), "camera.target");
-  EXPECT_EQ(error_of("[camera]\nposition = [0, -2, 0]\ntarget = [0, 0, 0]\n").key(), "camera.target");
+  EXPECT_EQ(error_of("[camera]\nposition = [1, 1, 1]\ntarget = [1, 1, 1]\n").key(),
+            "camera.target");
+  EXPECT_EQ(error_of("[camera]\nposition = [0, 2, 0]\ntarget = [0, 0, 0]\n").key(),
+            "camera.target");
+  EXPECT_EQ(error_of("[camera]\nposition = [0, -2, 0]\ntarget = [0, 0, 0]\n").key(),
+            "camera.target");
   EXPECT_EQ(error_of("[display]\nwidth = 100\n").key(), "display.height");
   EXPECT_EQ(error_of("[display]\nheight = 100\n").key(), "display.width");
   EXPECT_EQ(error_of("[display]\nwidth = 1\nheight = 1\n").key(), "display.width");

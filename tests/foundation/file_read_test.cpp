@@ -1,6 +1,8 @@
 // The bounded file reader behind every file Candela opens (scene, model, PNG,
 // noise/gust table): special files are refused at once with a message that
 // says what they are, and sizes are checked before anything is read.
+#include "core/file_read.h"
+
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
@@ -12,7 +14,6 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/file_read.h"
 #include "core/image.h"
 #include "core/noise_table.h"
 

@@ -46,16 +46,16 @@ int main(int argc, char** argv) {
   // parameters), so the fuzzer reaches the ARP and shape players too.
   const int np = 2, nw = 2, ne = 1, d = np + nw + 1 + ne, t = 4, lw = 3, lh = 4;
   nlohmann::json info = cm::ModelFile::from_bytes(mw.bytes(), "seed").info();
-  info["learning_flames"] = {{"np", np},     {"nw", nw},    {"ne", ne},       {"order", 2},
-                             {"width", lw},  {"height", lh}, {"frames", t},   {"base_y", 3.0},
-                             {"span", 2.5}};
+  info["learning_flames"] = {{"np", np},    {"nw", nw},      {"ne", ne},
+                             {"order", 2},  {"width", lw},   {"height", lh},
+                             {"frames", t}, {"base_y", 3.0}, {"span", 2.5}};
   mw.set_info(info);
   std::vector<float> lmean(lw * lh, 40.0f), leig(ne * lw * lh, 0.3f), params(t * d),
       a(2 * d * d, 0.0f), dd(d, 0.5f), b(d * d, 0.0f);
   for (size_t i = 0; i < params.size(); ++i) params[i] = 1.0f + static_cast<float>(i % 7);
   for (int i = 0; i < d; ++i) a[i * d + i] = 0.5f, b[i * d + i] = 0.1f;
-  cm::add_quantised(mw, "lf.mean", cm::quantise_images(lmean.data(), 1, lw * lh, cm::DType::kU8),
-                    1, lw, lh);
+  cm::add_quantised(mw, "lf.mean", cm::quantise_images(lmean.data(), 1, lw * lh, cm::DType::kU8), 1,
+                    lw, lh);
   cm::add_quantised(mw, "lf.eigen", cm::quantise_images(leig.data(), ne, lw * lh, cm::DType::kU8),
                     ne, lw, lh);
   mw.add_f32("lf.params", {t, d}, params);

@@ -2,6 +2,7 @@
 // reach the wind field, state replies, mistakes answered without effect; and
 // the whole `candela` program driven through --control.
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/socket.h>
@@ -16,8 +17,6 @@
 #include <filesystem>
 #include <regex>
 #include <string>
-
-#include <poll.h>
 
 #include "core/error.h"
 #include "input/control_channel.h"
@@ -323,7 +322,7 @@ TEST(ControlSocket, CandelaProgramCountsCandlesLit) {
   const std::string dir = temp_dir();
   const std::string path = dir + "/ctl";
   const std::string bin = std::string(CANDELA_BINARY_DIR) + "/firmware/candela";
-  std::vector<std::string> args = {bin,         "--display", "headless", "--size", "64x48",
+  std::vector<std::string> args = {bin,         "--display", "headless",    "--size", "64x48",
                                    "--control", path,        "--log-level", "warn"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
@@ -344,7 +343,8 @@ TEST(ControlSocket, CandelaProgramCountsCandlesLit) {
   EXPECT_EQ(lit, 7) << "the built-in scene has seven candles, all lit at first";
   if (client) {
     EXPECT_EQ(client->ask("blowout front 30"), "ok");
-    while (Clock::now() < deadline && lit == 7) lit = json_number(client->ask("state"), "candles_lit");
+    while (Clock::now() < deadline && lit == 7)
+      lit = json_number(client->ask("state"), "candles_lit");
     EXPECT_LT(lit, 7) << "a 30 m/s blowout put no candle out";
   }
   kill(pid, SIGTERM);

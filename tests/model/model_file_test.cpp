@@ -67,13 +67,14 @@ cm::ModelWriter with_flames(cm::ModelWriter mw, int order, int np = 4, int nw = 
                             int frames = 6) {
   const int w = 4, h = 5, d = np + nw + 1 + ne;
   nlohmann::json info = cm::ModelFile::from_bytes(mw.bytes(), "m").info();
-  info["learning_flames"] = {{"np", np},          {"nw", nw},        {"ne", ne},
-                             {"order", order},    {"width", w},      {"height", h},
-                             {"frames", frames},  {"base_y", 4.0},   {"span", 2.5}};
+  info["learning_flames"] = {{"np", np},         {"nw", nw},      {"ne", ne},
+                             {"order", order},   {"width", w},    {"height", h},
+                             {"frames", frames}, {"base_y", 4.0}, {"span", 2.5}};
   mw.set_info(info);
   const size_t px = static_cast<size_t>(w) * h;
   std::vector<float> mean(px, 30.0f), eig(static_cast<size_t>(ne) * px, 0.5f);
-  cm::add_quantised(mw, "lf.mean", cm::quantise_images(mean.data(), 1, px, cm::DType::kU8), 1, w, h);
+  cm::add_quantised(mw, "lf.mean", cm::quantise_images(mean.data(), 1, px, cm::DType::kU8), 1, w,
+                    h);
   cm::add_quantised(mw, "lf.eigen", cm::quantise_images(eig.data(), ne, px, cm::DType::kU8), ne, w,
                     h);
   std::vector<float> params(static_cast<size_t>(frames) * d, 1.0f),
@@ -282,10 +283,11 @@ TEST(FlameModel, RefusesWhatThePlayersCannotPlay) {
   EXPECT_EQ(error_of(with_flames(small_model(), 3, 4, 4, 2, 2).bytes(), &msg), Kind::kInconsistent);
   EXPECT_NE(msg.find("learning_flames.frames"), std::string::npos) << msg;
   // A clip at 100000 fps overflowed the Q16.16 frame rate.
-  EXPECT_EQ(error_of(edited(small_model(), [](nlohmann::json& i) { i["clips"][0]["fps"] = 100000.0; })
-                         .bytes(),
-                     &msg),
-            Kind::kInconsistent);
+  EXPECT_EQ(
+      error_of(
+          edited(small_model(), [](nlohmann::json& i) { i["clips"][0]["fps"] = 100000.0; }).bytes(),
+          &msg),
+      Kind::kInconsistent);
   EXPECT_NE(msg.find("clips[0].fps"), std::string::npos) << msg;
   // Negative jump costs, and a frame with more jumps than the walker sums in Q16.16.
   cm::ModelWriter neg = small_model();
@@ -295,7 +297,8 @@ TEST(FlameModel, RefusesWhatThePlayersCannotPlay) {
   EXPECT_NE(msg.find("graph.cost"), std::string::npos) << msg;
   cm::ModelWriter wide = small_model();
   const int n = cm::kMaxSuccessors + 1;
-  std::vector<int32_t> offsets{0, n, n + 1, n + 2, n + 3, n + 4}, succ(static_cast<size_t>(n) + 4, 2);
+  std::vector<int32_t> offsets{0, n, n + 1, n + 2, n + 3, n + 4},
+      succ(static_cast<size_t>(n) + 4, 2);
   std::vector<float> costs(succ.size(), 1.0f);
   wide.add_i32("graph.offsets", {6}, offsets);
   wide.add_i32("graph.successors", {static_cast<int64_t>(succ.size())}, succ);

@@ -281,8 +281,9 @@ std::unique_ptr<Element> EigenFlameSpec::create(const SceneContext& context) con
     // play the built-in one rather than leave the flame out.
     const auto fallback = default_eigen_model();
     if (model == fallback) throw;
-    LOG_ERROR("%s: eigenflame: model %s cannot be played here (%s); using the built-in default model",
-              context.scene_file.c_str(), model->source.c_str(), e.what());
+    LOG_ERROR(
+        "%s: eigenflame: model %s cannot be played here (%s); using the built-in default model",
+        context.scene_file.c_str(), model->source.c_str(), e.what());
     return std::make_unique<EigenFlame>(settings, fallback, position, context.seed);
   }
 }

@@ -34,8 +34,9 @@ GraphWalker::GraphWalker(GraphView graph, std::span<const float> weights, int st
   // At least one raw unit: a jump ~1e5x the median cost would round to 0, and a
   // frame whose jumps all did would divide by a zero sum in step().
   for (size_t i = 0; i < graph_.cost.size(); ++i)
-    inv_cost_[i] = std::max(Fixed::from_raw(1),
-                            Fixed::from_double(1.0 / (1.0 + std::max(0.0f, graph_.cost[i]) / median)));
+    inv_cost_[i] =
+        std::max(Fixed::from_raw(1),
+                 Fixed::from_double(1.0 / (1.0 + std::max(0.0f, graph_.cost[i]) / median)));
   // Lean bins.
   Fixed lo = Fixed::from_int(1000), hi = Fixed::from_int(-1000);
   for (Fixed l : lean_) lo = std::min(lo, l), hi = std::max(hi, l);
