@@ -4,6 +4,7 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -81,11 +82,8 @@ int main(int argc, char** argv) {
     std::printf("%s: OK (%zu elements)\n", desc.file.c_str(), desc.elements.size());
     return 0;
   }
-  if (desc.elements.empty()) {
-    // A kiosk never shows a black screen for a scene that draws nothing.
-    LOG_ERROR("%s; showing the built-in default scene instead", problems.front().c_str());
-    desc = load_builtin_scene("default");
-  }
+  // Run anyway (an input-only scene is how sensors are tried out), but say so.
+  if (desc.elements.empty()) LOG_WARN("%s", problems.front().c_str());
   if (opt.display.width == 0 && desc.width > 0) {
     opt.display.width = desc.width;
     opt.display.height = desc.height;
@@ -94,7 +92,16 @@ int main(int argc, char** argv) {
 
   try {
     auto display = open_display(opt.display);
-    Scene scene(desc, opt.seed, &g_stop);
+    auto scene_ptr = std::make_unique<Scene>(desc, opt.seed, &g_stop);
+    if (!g_stop && !desc.elements.empty() && scene_ptr->element_count() == 0 &&
+        desc.file != "<built-in default>") {
+      // Every element failed to create (logged above): the default scene, not a black screen.
+      LOG_ERROR("%s: no element could be created; showing the built-in default scene instead",
+                desc.file.c_str());
+      desc = load_builtin_scene("default");
+      scene_ptr = std::make_unique<Scene>(desc, opt.seed, &g_stop);
+    }
+    Scene& scene = *scene_ptr;
     if (g_stop) {
       LOG_INFO("stopped by %s while the scene was built", signal_name(g_signal));
       display->finish();
