@@ -220,7 +220,10 @@ AsyncFrameWriter::~AsyncFrameWriter() {
 uint8_t* AsyncFrameWriter::acquire() {
   std::unique_lock lock(mu_);
   cv_.wait(lock, [&] { return count_ < slots_.size() || error_; });
-  if (error_) std::rethrow_exception(error_);
+  if (error_) {
+    reported_ = true;  // finish() need not throw it a second time
+    std::rethrow_exception(error_);
+  }
   return slots_[(head_ + count_) % slots_.size()].data();
 }
 
@@ -268,7 +271,7 @@ void AsyncFrameWriter::finish() {
   }
   cv_.notify_all();
   if (thread_.joinable()) thread_.join();
-  if (error_) std::rethrow_exception(error_);
+  if (error_ && !reported_) std::rethrow_exception(error_);
   sink_->close();
 }
 
