@@ -66,9 +66,9 @@ class ElementSpec {
   // run with a fallback (an eigen-flame's broken model): logged at start-up,
   // an error for `candela --check`. Empty: nothing wrong.
   virtual std::string problem() const { return {}; }
-  // Memory and GPU cost in units of a typical element (a candle group, the
-  // test pattern: 1; an eigen-flame with its textures and buffers: 4); a scene
-  // may spend kMaxElementCost (scene/scene_file.h).
+  // Memory and GPU cost in units of a typical element (the test pattern, a
+  // group of up to 512 candles: 1; an eigen-flame with its textures and
+  // buffers: 4); a scene may spend kMaxElementCost (scene/scene_file.h).
   virtual unsigned cost() const { return 1; }
   Vec3 position;
   uint64_t seed = 0;  // 0: derived from the scene's seed

@@ -105,7 +105,10 @@ def case_scene_bounds():
     # Elements: 100,000 of them used to drive the machine into the OOM killer.
     check_scene(ELEMENT * 65, 2, "element: expected at most 64 [[element]] tables, got 65")
     check_scene('[[element]]\nkind = "eigenflame"\n' * 17, 2, "element[16]: the scene's elements would cost more")
-    out = check_scene('[[element]]\nkind = "eigenflame"\n' * 16, 0, "OK (16 elements)")
+    check_scene('[[element]]\nkind = "eigenflame"\n' * 16, 0, "OK (16 elements)")
+    grid = '[[element]]\nkind = "candles"\n[element.grid]\ncount = 4096\n'
+    check_scene(grid * 3, 0, "OK (3 elements)")  # 9 units each
+    check_scene(grid * 8, 2, "element[7]: the scene's elements would cost more")
 
 
 def case_check_degenerate():
