@@ -9,17 +9,10 @@
 namespace candela {
 namespace {
 
-// Values echoed in messages are cut short: a 10 MB bad string must not become a 10 MB log line.
-constexpr size_t kMaxEcho = 60;
-std::string shorten(const std::string& v) {
-  if (v.size() <= kMaxEcho) return v;
-  return v.substr(0, kMaxEcho) + "... (" + std::to_string(v.size()) + " characters)";
-}
-
 std::string describe(const toml::node& n) {
   std::ostringstream s;
   if (n.is_string()) {
-    return '"' + shorten(n.value<std::string>().value_or("")) + '"';
+    return '"' + echo_value(n.value<std::string>().value_or("")) + '"';
   } else if (n.is_table()) {
     s << "a table";
   } else if (n.is_array()) {
@@ -45,6 +38,12 @@ std::string range(double min, double max) {
 }
 
 }  // namespace
+
+std::string echo_value(std::string_view v) {
+  constexpr size_t kMaxEcho = 60;
+  if (v.size() <= kMaxEcho) return std::string(v);
+  return std::string(v.substr(0, kMaxEcho)) + "... (" + std::to_string(v.size()) + " characters)";
+}
 
 std::string resolve_relative(const std::string& scene_file, const std::string& path) {
   if (path.empty() || path[0] == '/') return path;
@@ -124,7 +123,7 @@ std::string ParamReader::string(std::string_view key, std::string_view def,
   if (allowed.size()) {
     for (auto a : allowed)
       if (a == v) return v;
-    fail(key, "expected one of " + choices + ", got \"" + shorten(v) + "\"");
+    fail(key, "expected one of " + choices + ", got \"" + echo_value(v) + "\"");
   }
   return v;
 }
@@ -153,7 +152,8 @@ Vec3 ParamReader::color(std::string_view key, Vec3 def) {
     const std::string s = *n->value<std::string>();
     unsigned r = 0, g = 0, b = 0;
     if (s.size() != 7 || s[0] != '#' || std::sscanf(s.c_str() + 1, "%2x%2x%2x", &r, &g, &b) != 3)
-      fail(key, "expected a colour \"#rrggbb\" or [r, g, b] in 0..1, got \"" + shorten(s) + "\"");
+      fail(key,
+           "expected a colour \"#rrggbb\" or [r, g, b] in 0..1, got \"" + echo_value(s) + "\"");
     return {r / 255.0f, g / 255.0f, b / 255.0f};
   }
   if (n && !n->is_array()) {
@@ -174,7 +174,7 @@ std::string ParamReader::path(std::string_view key, std::string_view def) {
   // is refused now, never read (core/file_read.h).
   const std::string why = regular_file_problem(full);
   if (!why.empty())
-    fail(key, "expected a readable regular file, but '" + shorten(full) + "': " + why);
+    fail(key, "expected a readable regular file, but '" + echo_value(full) + "': " + why);
   return full;
 }
 
@@ -203,7 +203,8 @@ void ParamReader::finish() const {
     if (!used_.contains(k.str())) {
       std::string known;
       for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
-      throw ConfigError(file_, key_path(k.str()), "unknown key (known here: " + known + ")");
+      throw ConfigError(file_, key_path(echo_value(k.str())),
+                        "unknown key (known here: " + known + ")");
     }
   }
 }

@@ -56,6 +56,10 @@ class ParamReader {
   std::set<std::string, std::less<>> used_;
 };
 
+// A value as echoed in a message: cut short (a 10 MB bad string must not
+// become a 10 MB log line), saying how long it was.
+std::string echo_value(std::string_view v);
+
 // Where relative paths in a scene are resolved: the scene file's folder.
 std::string resolve_relative(const std::string& scene_file, const std::string& path);
 

@@ -90,7 +90,7 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
   if (display.has("width") != display.has("height"))
     display.fail(display.has("width") ? "height" : "width",
                  "missing: give both width and height, or neither (the display's own size)");
-  if (display.has("width"))
+  if (display.has("width") && (scene.width || scene.height))  // 0 x 0: the display's own
     for (const auto& [k, v] : {std::pair{"width", scene.width}, std::pair{"height", scene.height}})
       if (v < 16)
         display.fail(k, "expected at least 16 pixels (as --size), got " + std::to_string(v));
@@ -149,7 +149,7 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
       const ElementKind* found = nullptr;
       for (const auto& k : element_kinds())
         if (k.name == kind) found = &k;
-      if (!found) r.fail("kind", "expected one of " + known + ", got \"" + kind + "\"");
+      if (!found) r.fail("kind", "expected one of " + known + ", got \"" + echo_value(kind) + "\"");
       SceneDesc::Entry e;
       e.kind = kind;
       e.name = r.string("name", kind + " " + std::to_string(i));

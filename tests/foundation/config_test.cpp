@@ -182,6 +182,12 @@ TEST(SceneConfig, LongBadValuesAreNotEchoedWhole) {
   EXPECT_EQ(e.key(), "background.color");
   EXPECT_LT(std::string(e.what()).size(), 300u) << std::string(e.what()).substr(0, 300);
   EXPECT_NE(e.expected().find("10485760 characters"), std::string::npos);
+  // Nor a long unknown key, or a long element kind.
+  const auto k = error_of("[camera]\n" + std::string(100000, 'k') + " = 1\n");
+  EXPECT_LT(std::string(k.what()).size(), 300u);
+  const auto kind = error_of("[[element]]\nkind = \"" + std::string(100000, 'q') + "\"\n");
+  EXPECT_EQ(kind.key(), "element[0].kind");
+  EXPECT_LT(std::string(kind.what()).size(), 300u);
 }
 
 TEST(SceneConfig, AnEmptySceneIsAProblem) {
