@@ -60,7 +60,8 @@ class ControlServer {
 
   static constexpr size_t kMaxClients = 8;
   static constexpr size_t kMaxLine = 1024;
-  static constexpr int64_t kIdleTimeoutMs = 30'000;
+  static constexpr int64_t kIdleTimeoutMs =
+      300'000;  // long-lived clients (a bridge) may ask rarely
 
  private:
   struct Client {
