@@ -42,6 +42,12 @@ int main(int argc, char** argv) {
   mw.add_i32("graph.successors", {3}, succ);
   mw.add_f32("graph.cost", {3}, cost);
   mw.write(std::string(argv[1]) + "/seed.cmodel");
+  // Issue 15 regression input: frame 2's only way on is a jump costing 1e7 x
+  // the median, whose preference rounded to 0 and was divided by (SIGFPE).
+  std::vector<float> extreme{1, 1, 1e7f};
+  mw.add_f32("graph.cost", {3}, extreme);
+  mw.write(std::string(argv[1]) + "/regress-extreme-jump-cost.cmodel");
+  mw.add_f32("graph.cost", {3}, cost);
   // The same with a Learning Flames part (an order-2 ARP over 2 + 2 + 1 + 1
   // parameters), so the fuzzer reaches the ARP and shape players too.
   const int np = 2, nw = 2, ne = 1, d = np + nw + 1 + ne, t = 4, lw = 3, lh = 4;
