@@ -33,6 +33,8 @@ tests=(
   curl gpgv debian-archive-keyring
   # libcamera on the board's vimc: `cam`, and udevd (libcamera enumerates through udev)
   libcamera-tools udev
+  # libFuzzer targets (tests/fuzz/run-fuzz.sh): clang and its fuzzer runtime
+  clang libclang-rt-14-dev
 )
 
 want=("${runtime[@]}")

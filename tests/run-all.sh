@@ -35,3 +35,8 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCANDELA_SANITIZE=ON -DCANDELA_BUILD_BENCH=OFF
 cmake --build build-asan -j "$jobs"
 ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE board
+
+# libFuzzer (clang, build-fuzz/): the model reader with the players built from
+# it, and the scene reader, 30 s each from tests/fuzz/corpus/; any crash,
+# leak, timeout or > 2 GB RSS fails the run.
+tests/fuzz/run-fuzz.sh 30

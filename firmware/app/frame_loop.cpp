@@ -54,7 +54,9 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
     frame.height = display.height();
     frame.frame = result.frames;
     frame.step = clock.steps() - 1;
-    if (s.inputs) s.inputs->publish(clock.steps(), result.frames, scene.wind().sample(Vec3{}));
+    if (s.inputs)
+      s.inputs->publish(clock.steps(), result.frames, scene.wind().sample(Vec3{}),
+                        scene.candles_lit());
     scene.draw(frame);
     display.present();
     const auto end = Clock::now();

@@ -1,6 +1,7 @@
 // Frame timing for --bench: preallocated, so measuring adds no allocation.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -9,9 +10,11 @@ namespace candela {
 
 class FrameStats {
  public:
+  // Statistics cover at most this many frames (the first ones): 16 MB, whatever --frames says.
+  static constexpr size_t kMaxFrames = size_t{1} << 20;
   explicit FrameStats(size_t capacity = 1 << 16) {
-    intervals_ms_.reserve(capacity);
-    work_ms_.reserve(capacity);
+    intervals_ms_.reserve(std::min(capacity, kMaxFrames));
+    work_ms_.reserve(std::min(capacity, kMaxFrames));
   }
   // interval: present-to-present; work: begin of frame to end of present.
   void add(double interval_ms, double work_ms) {

@@ -1,6 +1,12 @@
 // candela: the runtime. A thin main over the candela_runtime library.
+#include <signal.h>
+
+#include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "app/frame_loop.h"
 #include "app/options.h"
@@ -13,7 +19,33 @@
 
 namespace {
 std::atomic<bool> g_stop{false};
-void on_signal(int) { g_stop = true; }
+volatile std::sig_atomic_t g_signal = 0;
+void on_signal(int sig) {
+  g_signal = sig;
+  g_stop = true;
+}
+
+// SIGTERM (systemd), SIGINT (Ctrl-C) and SIGHUP (a closed terminal) end the
+// run cleanly: the frame loop stops, every output is finished (an mp4 gets
+// its index, no PNG .tmp or partial y4m frame is left) and candela exits 0.
+// A second one of them kills at once (SA_RESETHAND), for a stuck shutdown.
+// SIGPIPE is ignored: a write to a gone reader (ffmpeg, a control client)
+// returns EPIPE and is reported, instead of killing the display silently.
+void install_signal_handlers() {
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESETHAND;
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &sa, nullptr);
+  std::signal(SIGPIPE, SIG_IGN);
+}
+
+const char* signal_name(int sig) {
+  return sig == SIGTERM  ? "SIGTERM"
+         : sig == SIGINT ? "SIGINT"
+         : sig == SIGHUP ? "SIGHUP"
+                         : "a signal";
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -31,6 +63,7 @@ int main(int argc, char** argv) {
     return 0;
   }
 
+  install_signal_handlers();
   SceneDesc desc;
   try {
     desc = opt.test_pattern    ? load_builtin_scene("test-pattern")
@@ -40,22 +73,41 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "candela: %s\n", e.what());
     return 2;
   }
+  const std::vector<std::string> problems = scene_problems(desc);
   if (opt.check) {
+    // What the runtime would work around (a model it replaces with the
+    // built-in one, an empty scene) is still an error in the scene file.
+    for (const auto& p : problems) std::fprintf(stderr, "candela: error: %s\n", p.c_str());
+    if (!problems.empty()) return 2;
     std::printf("%s: OK (%zu elements)\n", desc.file.c_str(), desc.elements.size());
     return 0;
   }
+  // Run anyway (an input-only scene is how sensors are tried out), but say so.
+  if (desc.elements.empty()) LOG_WARN("%s", problems.front().c_str());
   if (opt.display.width == 0 && desc.width > 0) {
     opt.display.width = desc.width;
     opt.display.height = desc.height;
   }
   if (opt.display.refresh_hz == 0) opt.display.refresh_hz = desc.refresh_hz;
 
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
   try {
     auto display = open_display(opt.display);
-    Scene scene(desc, opt.seed);
-    FrameStats stats(opt.frames ? opt.frames : (1u << 16));
+    auto scene_ptr = std::make_unique<Scene>(desc, opt.seed, &g_stop);
+    if (!g_stop && !desc.elements.empty() && scene_ptr->element_count() == 0 &&
+        desc.file != "<built-in default>") {
+      // Every element failed to create (logged above): the default scene, not a black screen.
+      LOG_ERROR("%s: no element could be created; showing the built-in default scene instead",
+                desc.file.c_str());
+      desc = load_builtin_scene("default");
+      scene_ptr = std::make_unique<Scene>(desc, opt.seed, &g_stop);
+    }
+    Scene& scene = *scene_ptr;
+    if (g_stop) {
+      LOG_INFO("stopped by %s while the scene was built", signal_name(g_signal));
+      display->finish();
+      return 0;
+    }
+    FrameStats stats(opt.frames ? opt.frames : (1u << 16));  // at most FrameStats::kMaxFrames
     LoopSettings ls;
     ls.max_frames = opt.frames;
     ls.steps_per_second = desc.steps_per_second;
@@ -70,6 +122,7 @@ int main(int argc, char** argv) {
     const LoopResult r = run_frame_loop(*display, scene, ls);
     const double cpu = process_cpu_seconds() - cpu0;
     display->finish();
+    if (g_stop) LOG_INFO("stopped by %s; outputs finished", signal_name(g_signal));
     LOG_INFO("%llu frames, %llu steps", static_cast<unsigned long long>(r.frames),
              static_cast<unsigned long long>(r.steps));
     if (opt.bench)

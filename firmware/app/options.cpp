@@ -1,11 +1,38 @@
 #include "app/options.h"
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <cstdio>
+#include <string>
 
 #include "input/gpio_line.h"
 
 namespace candela {
+namespace {
+
+// Plain decimal digits only, at most `max`: "-1", "1e11", "0x10", "12abc" and
+// anything that would overflow are refused (strtoull and CLI11 take some of them).
+bool parse_count(const std::string& s, uint64_t max, uint64_t* out) {
+  if (s.empty() || s.size() > 20) return false;
+  uint64_t v = 0;
+  for (char c : s) {
+    if (c < '0' || c > '9') return false;
+    const uint64_t d = static_cast<uint64_t>(c - '0');
+    if (v > (max - d) / 10) return false;
+    v = v * 10 + d;
+  }
+  *out = v;
+  return true;
+}
+
+int usage_error(const char* option, const std::string& expected, const std::string& got) {
+  const std::string shown = got.size() > 40 ? got.substr(0, 40) + "..." : got;
+  std::fprintf(stderr, "candela: %s: expected %s, got '%s'\n", option, expected.c_str(),
+               shown.c_str());
+  return 2;
+}
+
+}  // namespace
 
 int parse_options(int argc, char** argv, Options& o) {
   CLI::App app{
@@ -15,9 +42,10 @@ int parse_options(int argc, char** argv, Options& o) {
       "candela"};
   // Also names the GPIO library: which libgpiod API this build was made for.
   app.set_version_flag("--version", "candela 0.1.0\n" + gpio_library_version());
-  std::string size;
-  app.add_option("--scene", o.scene, "Scene file (TOML); default: the built-in scene")
-      ->check(CLI::ExistingFile);
+  std::string size, frames, seed;
+  // Not CLI::ExistingFile: the scene reader says what is wrong with the path
+  // ("too many levels of symbolic links", "not a regular file (a FIFO)").
+  app.add_option("--scene", o.scene, "Scene file (TOML); default: the built-in scene");
   app.add_flag("--test-pattern", o.test_pattern,
                "Show colour bars, a frame counter and a moving marker");
   app.add_flag("--check", o.check,
@@ -28,14 +56,14 @@ int parse_options(int argc, char** argv, Options& o) {
   app.add_option("--size", size, "Size WxH (headless, window; DRM: the mode to pick)");
   app.add_option("--refresh", o.display.refresh_hz, "DRM: refresh rate of the mode to pick (Hz)")
       ->check(CLI::Range(1, 1000));
-  app.add_option("--frames", o.frames, "Stop after N frames (default: run until quit)");
+  app.add_option("--frames", frames, "Stop after N frames (default: run until quit)");
   app.add_option("--out", o.display.out_path,
                  "Headless: write frames to a PNG folder, a .y4m file or an .mp4 (needs ffmpeg); "
                  "with --display auto this picks headless");
   app.add_option("--fps", o.display.fps,
                  "Frame rate of written video; headless animation advances 1/fps per frame")
       ->check(CLI::Range(1, 240));
-  app.add_option("--seed", o.seed, "Random seed (default: the scene's)");
+  app.add_option("--seed", seed, "Random seed, 1 to 2^63-1 (default: the scene's)");
   app.add_flag("--realtime", o.realtime,
                "Headless: hold --fps by the wall clock and animate in real time, like a screen "
                "(default: as fast as possible, one step per frame)");
@@ -55,17 +83,21 @@ int parse_options(int argc, char** argv, Options& o) {
   }
   o.display.vsync = !no_vsync;
   if (!size.empty()) {
-    int w = 0, h = 0;
-    char extra = 0;
-    if (std::sscanf(size.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 16 || h < 16 ||
-        w > 16384 || h > 16384) {
-      std::fprintf(stderr, "candela: --size: expected WxH, e.g. 1280x720, got '%s'\n",
-                   size.c_str());
-      return 2;
-    }
-    o.display.width = w;
-    o.display.height = h;
+    const auto x = size.find('x');
+    uint64_t w = 0, h = 0;
+    if (x == std::string::npos || !parse_count(size.substr(0, x), 16384, &w) ||
+        !parse_count(size.substr(x + 1), 16384, &h) || w < 16 || h < 16)
+      return usage_error("--size", "WxH, each 16 to 16384, e.g. 1280x720", size);
+    o.display.width = static_cast<int>(w);
+    o.display.height = static_cast<int>(h);
   }
+  // Up to 2^53 frames: centuries at 60 Hz, and exact as a double in statistics.
+  if (!frames.empty() && !parse_count(frames, uint64_t{1} << 53, &o.frames))
+    return usage_error("--frames", "a whole number of frames, 0 to 2^53 (0: run until quit)",
+                       frames);
+  // The scene's `seed` takes the same range; 0 would mean "the scene's".
+  if (!seed.empty() && (!parse_count(seed, INT64_MAX, &o.seed) || o.seed == 0))
+    return usage_error("--seed", "a whole number from 1 to 2^63-1", seed);
   if (!o.display.out_path.empty() && o.display.kind == "auto") o.display.kind = "headless";
   if (!o.display.out_path.empty() && o.display.kind != "headless") {
     std::fprintf(stderr, "candela: --out needs --display headless\n");

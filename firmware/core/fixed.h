@@ -24,10 +24,18 @@ struct Fixed {
     return Fixed{static_cast<int32_t>(s >= 0 ? (s + den / 2) / den : -((-s + den / 2) / den))};
   }
   // Only for loading configuration (once, at start-up): rounds to nearest.
+  // Saturates at +-32768 (NaN gives 0) rather than overflow, which would be
+  // undefined; readers of untrusted numbers check the range first
+  // (in_range() below, ParamReader::fixed) and refuse what does not fit.
   static Fixed from_double(double d) {
     const double s = d * kOne;
+    if (!(s == s)) return Fixed{};
+    if (s >= 2147483646.5) return Fixed{std::numeric_limits<int32_t>::max()};
+    if (s <= -2147483647.5) return Fixed{std::numeric_limits<int32_t>::min()};
     return Fixed{static_cast<int32_t>(s >= 0 ? s + 0.5 : s - 0.5)};
   }
+  // Whether from_double(d) holds d (to within rounding).
+  static bool in_range(double d) { return d > -32768.0 && d < 32767.99998; }
   constexpr float to_float() const { return static_cast<float>(raw) / kOne; }
   constexpr double to_double() const { return static_cast<double>(raw) / kOne; }
   constexpr int32_t floor_int() const { return raw >> kFracBits; }

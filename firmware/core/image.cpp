@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "core/file_read.h"
 
 namespace candela {
 namespace {
@@ -28,18 +29,23 @@ void png_warning_fn(png_structp, png_const_charp) {}
 }  // namespace
 
 Image read_png(const std::string& path, int want_channels) {
-  std::unique_ptr<FILE, FileCloser> f(std::fopen(path.c_str(), "rb"));
-  if (!f) throw ConfigError(path, "", std::string("cannot open PNG: ") + std::strerror(errno));
-  unsigned char sig[8];
-  if (std::fread(sig, 1, 8, f.get()) != 8 || png_sig_cmp(sig, 0, 8) != 0)
+  const std::string bytes = read_bounded_file(path, FileKind::kImage);
+  if (bytes.size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(bytes.data()), 0, 8) != 0)
     throw ConfigError(path, "", "expected a PNG file (bad signature)");
 
   png_image img;
   std::memset(&img, 0, sizeof img);
   img.version = PNG_IMAGE_VERSION;
-  std::rewind(f.get());
-  if (!png_image_begin_read_from_stdio(&img, f.get()))
+  if (!png_image_begin_read_from_memory(&img, bytes.data(), bytes.size()))
     throw ConfigError(path, "", std::string("unreadable PNG: ") + img.message);
+  // A small file can declare a huge image (a decompression bomb): bound what it unpacks to.
+  if (static_cast<uint64_t>(img.width) * img.height > kMaxPngPixels) {
+    png_image_free(&img);
+    throw ConfigError(path, "",
+                      "a " + std::to_string(img.width) + "x" + std::to_string(img.height) +
+                          " image, more than the " + std::to_string(kMaxPngPixels >> 20) +
+                          " Mpixel limit for a PNG image");
+  }
   const int stored = PNG_IMAGE_SAMPLE_CHANNELS(img.format);
   const int ch = want_channels ? want_channels : stored;
   switch (ch) {

@@ -20,7 +20,11 @@ struct Image {
   uint8_t at(int x, int y, int c = 0) const { return row(y)[x * channels + c]; }
 };
 
-// Reads any PNG, converted to `want_channels` (0 = as stored, 8-bit).
+// Decoded images beyond this many pixels are refused (a small PNG can declare a huge one).
+inline constexpr uint64_t kMaxPngPixels = uint64_t{64} << 20;
+
+// Reads any PNG (a regular file within the PNG size limit, core/file_read.h),
+// converted to `want_channels` (0 = as stored, 8-bit).
 // Throws ConfigError naming the file and what is wrong with it.
 Image read_png(const std::string& path, int want_channels = 0);
 // Writes atomically (temporary file + rename). Throws RuntimeError on failure.

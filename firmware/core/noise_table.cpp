@@ -1,11 +1,9 @@
 #include "core/noise_table.h"
 
-#include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "core/error.h"
+#include "core/file_read.h"
 
 namespace candela {
 namespace {
@@ -101,12 +99,7 @@ NoiseTable NoiseTable::parse(std::string_view b, const std::string& source) {
 }
 
 NoiseTable NoiseTable::load(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw ConfigError(path, "", std::string("cannot open noise table: ") + std::strerror(errno));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse(ss.str(), path);
+  return parse(read_bounded_file(path, FileKind::kNoiseTable), path);
 }
 
 }  // namespace candela

@@ -1,5 +1,6 @@
 #include "display/frame_writer.h"
 
+#include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -131,7 +132,23 @@ class FfmpegSink final : public FrameSink {
     posix_spawn_file_actions_init(&fa);
     posix_spawn_file_actions_adddup2(&fa, fds[0], 0);
     posix_spawn_file_actions_addclose(&fa, fds[1]);
-    const int rc = posix_spawnp(&pid_, "ffmpeg", &fa, nullptr, argv.data(), environ);
+    // ffmpeg gets its own process group, so Ctrl-C or a SIGHUP to the
+    // terminal's group reaches candela only: candela stops, closes the pipe
+    // and ffmpeg finishes the file (writes the mp4's moov) instead of dying
+    // half-way. SIGPIPE back to default for ffmpeg (candela ignores it).
+    posix_spawnattr_t attr;
+    posix_spawnattr_init(&attr);
+    sigset_t def;
+    sigemptyset(&def);
+    sigaddset(&def, SIGPIPE);
+    sigaddset(&def, SIGINT);
+    sigaddset(&def, SIGTERM);
+    sigaddset(&def, SIGHUP);
+    posix_spawnattr_setsigdefault(&attr, &def);
+    posix_spawnattr_setpgroup(&attr, 0);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF);
+    const int rc = posix_spawnp(&pid_, "ffmpeg", &fa, &attr, argv.data(), environ);
+    posix_spawnattr_destroy(&attr);
     posix_spawn_file_actions_destroy(&fa);
     ::close(fds[0]);
     if (rc != 0) {
@@ -153,7 +170,9 @@ class FfmpegSink final : public FrameSink {
     while (done < bytes_) {
       const ssize_t n = ::write(fd_, rgba + done, bytes_ - done);
       if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) throw RuntimeError(path_ + ": ffmpeg stopped accepting frames");
+      if (n <= 0)  // EPIPE (SIGPIPE is ignored): ffmpeg exited, its message is above
+        throw RuntimeError(path_ + ": ffmpeg stopped accepting frames (" +
+                           std::strerror(n < 0 ? errno : EIO) + "); see its message above");
       done += static_cast<size_t>(n);
     }
   }
@@ -201,7 +220,10 @@ AsyncFrameWriter::~AsyncFrameWriter() {
 uint8_t* AsyncFrameWriter::acquire() {
   std::unique_lock lock(mu_);
   cv_.wait(lock, [&] { return count_ < slots_.size() || error_; });
-  if (error_) std::rethrow_exception(error_);
+  if (error_) {
+    reported_ = true;  // finish() need not throw it a second time
+    std::rethrow_exception(error_);
+  }
   return slots_[(head_ + count_) % slots_.size()].data();
 }
 
@@ -249,7 +271,7 @@ void AsyncFrameWriter::finish() {
   }
   cv_.notify_all();
   if (thread_.joinable()) thread_.join();
-  if (error_) std::rethrow_exception(error_);
+  if (error_ && !reported_) std::rethrow_exception(error_);
   sink_->close();
 }
 

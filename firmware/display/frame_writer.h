@@ -45,6 +45,7 @@ class AsyncFrameWriter {
   size_t head_ = 0, count_ = 0;  // queued slots: [head_, head_ + count_)
   bool stop_ = false;
   bool finished_ = false;
+  bool reported_ = false;  // acquire() has thrown error_ already
   std::exception_ptr error_;
   std::thread thread_;
 };

@@ -1,19 +1,23 @@
 #include "input/control_channel.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 
 #include "core/error.h"
 #include "core/log.h"
+#include "input/input_event.h"
 
 namespace candela {
 
@@ -36,14 +40,24 @@ std::vector<std::string_view> split_words(std::string_view s) {
   return words;
 }
 
+// Plain decimal only: strtod would also take "0x10" (16), "inf" or "1e1".
+// from_chars (general format) takes no hex; a leading '+' is allowed here.
 bool parse_number(std::string_view w, double lo, double hi, double& out) {
-  const std::string s(w);
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(s.c_str(), &end);
-  if (errno || end != s.c_str() + s.size() || !std::isfinite(v) || v < lo || v > hi) return false;
+  if (!w.empty() && w[0] == '+') w.remove_prefix(1);
+  double v = 0;
+  const auto r = std::from_chars(w.data(), w.data() + w.size(), v, std::chars_format::fixed);
+  if (w.empty() || r.ec != std::errc() || r.ptr != w.data() + w.size() || !std::isfinite(v) ||
+      v < lo || v > hi)
+    return false;
   out = v;
   return true;
+}
+
+// Words echoed in errors are cut short.
+std::string echo(std::string_view w) {
+  return w.size() <= 40
+             ? std::string(w)
+             : std::string(w.substr(0, 40)) + "... (" + std::to_string(w.size()) + " characters)";
 }
 
 // Unit vector of where wind from `side` blows to.
@@ -78,7 +92,7 @@ ControlCommand parse_control_command(std::string_view line, const WindSpec& wind
   if (w.empty()) return error("empty command; " + std::string(kControlHelp));
   const std::string_view verb = w[0];
   if (verb == "state" || verb == "ping" || verb == "help") {
-    if (w.size() != 1) return error(std::string(verb) + " takes no arguments");
+    if (w.size() != 1) return error(echo(verb) + " takes no arguments");
     c.kind = verb == "state"  ? ControlCommand::Kind::kState
              : verb == "ping" ? ControlCommand::Kind::kPing
                               : ControlCommand::Kind::kHelp;
@@ -99,7 +113,7 @@ ControlCommand parse_control_command(std::string_view line, const WindSpec& wind
     double strength = (blow ? wind.gust_speed * 4 : wind.gust_speed).to_double();
     if (i < w.size() && !parse_number(w[i++], 0, 60, strength))
       return error(std::string(verb) + ": expected a speed in m/s in [0, 60], got \"" +
-                   std::string(w[i - 1]) + "\"");
+                   echo(w[i - 1]) + "\"");
     if (i < w.size()) return error(std::string(verb) + ": too many arguments");
     const Fixed s = Fixed::from_double(strength);
     c.event = {blow ? WindEvent::Type::kBlowOut : WindEvent::Type::kGust, x * s, z * s};
@@ -117,24 +131,47 @@ ControlCommand parse_control_command(std::string_view line, const WindSpec& wind
     c.event = {WindEvent::Type::kSteady, {}, {}};
     return c;
   }
-  return error("unknown command \"" + std::string(verb) + "\"; " + kControlHelp);
+  return error("unknown command \"" + echo(verb) + "\"; " + kControlHelp);
 }
 
-ControlServer::ControlServer(std::string path) : path_(std::move(path)) {
+ControlServer::ControlServer(std::string path, int64_t idle_timeout_ms)
+    : path_(std::move(path)), idle_ns_(idle_timeout_ms * 1'000'000) {
   sockaddr_un addr{};
   addr.sun_family = AF_UNIX;
   if (path_.empty() || path_.size() >= sizeof addr.sun_path)
     throw RuntimeError("control socket " + path_ + ": path empty or longer than " +
                        std::to_string(sizeof addr.sun_path - 1) + " bytes");
+  // The lock first: whoever holds it owns the socket path. The lock file is
+  // never removed (removing it would let two servers lock different files).
+  const std::string lock_path = path_ + ".lock";
+  lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0600);
+  if (lock_fd_ < 0)
+    throw RuntimeError("control socket " + path_ + ": cannot open its lock file " + lock_path +
+                       ": " + std::strerror(errno));
+  if (flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int err = errno;
+    close(lock_fd_);
+    lock_fd_ = -1;
+    throw RuntimeError("control socket " + path_ +
+                       (err == EWOULDBLOCK
+                            ? std::string(": another candela is serving it (") + lock_path +
+                                  " is locked); not taking it over"
+                            : ": cannot lock " + lock_path + ": " + std::strerror(err)));
+  }
+  auto fail = [&](const std::string& why) {
+    if (listen_fd_ >= 0) close(listen_fd_);
+    listen_fd_ = -1;
+    close(lock_fd_);
+    lock_fd_ = -1;
+    throw RuntimeError("control socket " + path_ + ": " + why);
+  };
   struct stat st {};
   if (lstat(path_.c_str(), &st) == 0) {
-    if (!S_ISSOCK(st.st_mode))
-      throw RuntimeError("control socket " + path_ +
-                         ": exists and is not a socket; not replacing it");
-    unlink(path_.c_str());  // a stale socket from an earlier run
+    if (!S_ISSOCK(st.st_mode)) fail("exists and is not a socket; not replacing it");
+    unlink(path_.c_str());  // stale: its server no longer holds the lock
   }
   listen_fd_ = socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
-  if (listen_fd_ < 0) throw RuntimeError(std::string("control socket: ") + std::strerror(errno));
+  if (listen_fd_ < 0) fail(std::strerror(errno));
   // Bind inside a private 0700 folder, tighten to 0600, then rename into
   // place: nobody else can ever connect in between (no umask games, which
   // would touch every thread).
@@ -142,12 +179,8 @@ ControlServer::ControlServer(std::string path) : path_(std::move(path)) {
   dir = dir.substr(0, dir.find_last_of('/') == std::string::npos ? 0 : dir.find_last_of('/') + 1);
   std::string tmpl = (dir.empty() ? std::string("./") : dir) + ".candela-ctl-XXXXXX";
   const std::string tmp_dir = mkdtemp(tmpl.data()) ? tmpl : std::string();
-  if (tmp_dir.empty()) {
-    const int err = errno;
-    close(listen_fd_);
-    throw RuntimeError("control socket " + path_ +
-                       ": cannot create a folder beside it: " + std::strerror(err));
-  }
+  if (tmp_dir.empty())
+    fail(std::string("cannot create a folder beside it: ") + std::strerror(errno));
   const std::string tmp_path = tmp_dir + "/s";
   std::strncpy(addr.sun_path, tmp_path.c_str(), sizeof addr.sun_path - 1);
   int err = 0;
@@ -159,10 +192,7 @@ ControlServer::ControlServer(std::string path) : path_(std::move(path)) {
     err = errno;
   unlink(tmp_path.c_str());
   rmdir(tmp_dir.c_str());
-  if (err) {
-    close(listen_fd_);
-    throw RuntimeError("control socket " + path_ + ": " + std::strerror(err));
-  }
+  if (err) fail(std::strerror(err));
   LOG_INFO("control socket: %s", path_.c_str());
 }
 
@@ -170,12 +200,28 @@ ControlServer::~ControlServer() {
   for (auto& c : clients_) close(c.fd);
   if (listen_fd_ >= 0) {
     close(listen_fd_);
-    unlink(path_.c_str());
+    unlink(path_.c_str());  // ours: we hold the lock
   }
+  if (lock_fd_ >= 0) close(lock_fd_);
+}
+
+int64_t ControlServer::expire_idle(int64_t now) {
+  int64_t next = INT64_MAX;
+  for (size_t i = clients_.size(); i-- > 0;) {
+    const int64_t due = clients_[i].last_ns + idle_ns_;
+    if (due <= now) {
+      const char msg[] = "error: idle for too long; closing\n";
+      (void)send(clients_[i].fd, msg, sizeof msg - 1, MSG_NOSIGNAL | MSG_DONTWAIT);
+      drop(i);
+    } else {
+      next = std::min(next, due);
+    }
+  }
+  return next;
 }
 
 void ControlServer::add_fds(std::vector<pollfd>& fds) const {
-  fds.push_back({listen_fd_, clients_.size() < kMaxClients ? short(POLLIN) : short(0), 0});
+  fds.push_back({listen_fd_, POLLIN, 0});  // when full, a newcomer replaces the most idle
   for (const auto& c : clients_) fds.push_back({c.fd, POLLIN, 0});
 }
 
@@ -199,6 +245,7 @@ void ControlServer::serve(const pollfd* fds, size_t n,
       continue;
     }
     if (got < 0) continue;
+    c.last_ns = monotonic_ns();
     c.buffer.append(buf, static_cast<size_t>(got));
     size_t nl;
     bool bad = false;
@@ -222,10 +269,18 @@ void ControlServer::serve(const pollfd* fds, size_t n,
   }
   for (size_t k = gone.size(); k-- > 0;) drop(gone[k]);
   if (fds[0].revents & POLLIN) {
-    while (clients_.size() < kMaxClients) {
+    for (;;) {
       const int fd = accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC | SOCK_NONBLOCK);
       if (fd < 0) break;
-      clients_.push_back({fd, {}});
+      if (clients_.size() >= kMaxClients) {
+        size_t idlest = 0;
+        for (size_t i = 1; i < clients_.size(); ++i)
+          if (clients_[i].last_ns < clients_[idlest].last_ns) idlest = i;
+        const char msg[] = "error: too many clients; closing the most idle\n";
+        (void)send(clients_[idlest].fd, msg, sizeof msg - 1, MSG_NOSIGNAL | MSG_DONTWAIT);
+        drop(idlest);
+      }
+      clients_.push_back({fd, {}, monotonic_ns()});
     }
   }
 }

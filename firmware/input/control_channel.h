@@ -13,6 +13,7 @@
 
 #include <poll.h>
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -32,9 +33,15 @@ extern const char* const kControlHelp;
 
 class ControlServer {
  public:
-  // Creates the socket at `path` (replacing a stale socket there, never another
-  // kind of file). Throws RuntimeError saying why it cannot.
-  explicit ControlServer(std::string path);
+  // Creates the socket at `path`. A lock file beside it (`path`.lock, held
+  // with flock for the server's life) tells a live server from a stale
+  // socket: a second candela is refused and leaves the first one's socket
+  // alone; a stale socket is replaced; never another kind of file.
+  // Clients silent for `idle_timeout_ms` are dropped, and when all
+  // kMaxClients slots are taken a new client replaces the longest-silent one,
+  // so silent clients cannot lock everyone out. Throws RuntimeError saying
+  // why the socket cannot be made.
+  explicit ControlServer(std::string path, int64_t idle_timeout_ms = kIdleTimeoutMs);
   ~ControlServer();
   ControlServer(const ControlServer&) = delete;
   ControlServer& operator=(const ControlServer&) = delete;
@@ -47,17 +54,26 @@ class ControlServer {
   void serve(const pollfd* fds, size_t n,
              const std::function<std::string(std::string_view)>& answer);
 
+  // Drops clients silent since before now_ns - idle timeout; returns when the
+  // next one would time out (monotonic ns; INT64_MAX: no clients).
+  int64_t expire_idle(int64_t now_ns);
+
   static constexpr size_t kMaxClients = 8;
   static constexpr size_t kMaxLine = 1024;
+  static constexpr int64_t kIdleTimeoutMs =
+      300'000;  // long-lived clients (a bridge) may ask rarely
 
  private:
   struct Client {
     int fd;
     std::string buffer;
+    int64_t last_ns;  // when it connected or last sent something
   };
   void drop(size_t index);
   std::string path_;
+  int64_t idle_ns_;
   int listen_fd_ = -1;
+  int lock_fd_ = -1;
   std::vector<Client> clients_;
 };
 

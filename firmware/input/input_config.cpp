@@ -122,7 +122,8 @@ std::vector<InputSpec> parse_inputs(const toml::node* node, const std::string& f
                  "expected \"auto\", a device path like /dev/video0 or a libcamera "
                  "camera id, got an empty string");
         if (s.device.rfind("video", 0) == 0)  // a V4L2 node without its /dev/
-          r.fail("device", "expected a device path like /dev/video0, got \"" + s.device + "\"");
+          r.fail("device",
+                 "expected a device path like /dev/video0, got \"" + echo_value(s.device) + "\"");
         if (s.backend == "v4l2" && s.device != "auto" && s.device.rfind("/dev/", 0) != 0)
           r.fail("device",
                  "expected \"auto\" or a device path like /dev/video0 for backend "

@@ -110,7 +110,8 @@ void InputHub::drain(WindField& wind) {
   while (camera_queue_.pop(e)) apply(e);
 }
 
-void InputHub::publish(uint64_t step, uint64_t frame, WindSample wind) {
+void InputHub::publish(uint64_t step, uint64_t frame, WindSample wind, int candles_lit) {
+  candles_lit_.store(candles_lit, std::memory_order_relaxed);
   wind_x_.store(wind.x.raw, std::memory_order_relaxed);
   wind_z_.store(wind.z.raw, std::memory_order_relaxed);
   step_.store(step, std::memory_order_relaxed);
@@ -129,10 +130,13 @@ std::string ms(int64_t ns) {
 std::string InputHub::state_json() const {
   char head[512];
   const uint64_t frame = frame_.load(std::memory_order_acquire);
+  char lit[16] = "null";
+  if (const int n = candles_lit_.load(std::memory_order_relaxed); n >= 0)
+    std::snprintf(lit, sizeof lit, "%d", n);
   std::snprintf(head, sizeof head,
                 "{\"frame\":%llu,\"step\":%llu,\"wind\":{\"x\":%.4f,\"z\":%.4f},\"events\":%llu,"
                 "\"control_events\":%llu,\"dropped\":%llu,\"latency_ms\":{\"last\":%s,\"max\":%s},"
-                "\"candles_lit\":null,\"inputs\":[",
+                "\"candles_lit\":%s,\"inputs\":[",
                 static_cast<unsigned long long>(frame),
                 static_cast<unsigned long long>(step_.load(std::memory_order_relaxed)),
                 Fixed::from_raw(wind_x_.load(std::memory_order_relaxed)).to_double(),
@@ -141,7 +145,7 @@ std::string InputHub::state_json() const {
                 static_cast<unsigned long long>(applied_control_.load(std::memory_order_relaxed)),
                 static_cast<unsigned long long>(input_queue_.dropped() + camera_queue_.dropped()),
                 ms(last_latency_ns_.load(std::memory_order_relaxed)).c_str(),
-                ms(max_latency_ns_.load(std::memory_order_relaxed)).c_str());
+                ms(max_latency_ns_.load(std::memory_order_relaxed)).c_str(), lit);
   std::string out = head;
   bool first = true;
   for (size_t i = 0; i < specs_.size(); ++i) {
@@ -205,6 +209,7 @@ void InputHub::input_thread() {
     const int64_t now = monotonic_ns();
     int64_t deadline = now + GpioSource::kRetryNs;
     for (auto& g : gpio_) deadline = std::min(deadline, g->service(now, *input_sink_));
+    if (control_) deadline = std::min(deadline, control_->expire_idle(now));
     fds.clear();
     fd_owner.clear();
     fds.push_back({stop_fd_, POLLIN, 0});

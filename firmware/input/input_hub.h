@@ -40,7 +40,8 @@ class InputHub {
   // Frame loop, once per frame before the steps: applies queued events.
   void drain(WindField& wind);
   // Frame loop, once per frame after the steps: what `state` reports.
-  void publish(uint64_t step, uint64_t frame, WindSample wind);
+  // candles_lit: -1 when the scene has no candles (reported as null).
+  void publish(uint64_t step, uint64_t frame, WindSample wind, int candles_lit = -1);
 
   // The `state` reply (one JSON line). Input thread.
   std::string state_json() const;
@@ -69,7 +70,7 @@ class InputHub {
 
   // Written by the frame loop, read by the input thread.
   std::atomic<uint64_t> step_{0}, frame_{0}, applied_{0};
-  std::atomic<int32_t> wind_x_{0}, wind_z_{0};
+  std::atomic<int32_t> wind_x_{0}, wind_z_{0}, candles_lit_{-1};
   std::atomic<int64_t> last_latency_ns_{-1}, max_latency_ns_{-1};
   std::unique_ptr<std::atomic<uint64_t>[]> applied_by_source_;
   std::atomic<uint64_t> applied_control_{0};

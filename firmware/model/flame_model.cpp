@@ -92,11 +92,19 @@ FlameModel FlameModel::from(ModelFile file) {
   const int64_t edges = static_cast<int64_t>(m.graph.successors.size());
   m.graph.cost = f.require("graph.cost", DType::kF32, {edges}).view<float>();
   require_finite(f, "graph.cost", m.graph.cost);
+  for (float c : m.graph.cost)
+    if (c < 0) f.fail("tensor graph.cost", "expected distances >= 0, got " + std::to_string(c));
   if (m.graph.offsets[0] != 0 || m.graph.offsets[frames] != edges)
     f.fail("tensor graph.offsets", "must start at 0 and end at the number of successors");
-  for (int i = 0; i < frames; ++i)
+  for (int i = 0; i < frames; ++i) {
     if (m.graph.offsets[i + 1] <= m.graph.offsets[i])
       f.fail("tensor graph.offsets", "frame " + std::to_string(i) + " has no successor");
+    if (m.graph.offsets[i + 1] - m.graph.offsets[i] > kMaxSuccessors)
+      f.fail("tensor graph.offsets",
+             "frame " + std::to_string(i) + " has " +
+                 std::to_string(m.graph.offsets[i + 1] - m.graph.offsets[i]) +
+                 " successors; the graph player takes at most " + std::to_string(kMaxSuccessors));
+  }
   for (int32_t s : m.graph.successors)
     if (s < 0 || s >= frames) f.fail("tensor graph.successors", "frame index out of range");
   const auto& g = member(f, info, "model", "graph");
@@ -113,7 +121,7 @@ FlameModel FlameModel::from(ModelFile file) {
     c.source = get_str(f, clips[i], p, "source");
     c.first = get_int(f, clips[i], p, "first", 0, frames);
     c.count = get_int(f, clips[i], p, "count", 1, frames);
-    c.fps = get_num(f, clips[i], p, "fps", 0.1, 100000);
+    c.fps = get_num(f, clips[i], p, "fps", 0.1, kMaxClipFps);
     if (c.first != next || c.first + c.count > frames)
       f.fail(p, "clips must cover the frames in order without gaps");
     next = c.first + c.count;
@@ -150,13 +158,19 @@ FlameModel FlameModel::from(ModelFile file) {
     L.np = get_int(f, lf, p, "np", 2, 256);
     L.nw = get_int(f, lf, p, "nw", 2, 256);
     L.ne = get_int(f, lf, p, "ne", 1, 256);
-    L.order = get_int(f, lf, p, "order", 1, 8);
+    L.order = get_int(f, lf, p, "order", 1, kMaxArpOrder);
     L.width = get_int(f, lf, p, "width", 1, 16384);
     L.height = get_int(f, lf, p, "height", 1, 16384);
     L.frames = get_int(f, lf, p, "frames", 1, 1 << 24);
     L.base_y = static_cast<float>(get_num(f, lf, p, "base_y", -1e6, 1e6));
     L.span = static_cast<float>(get_num(f, lf, p, "span", 0.1, 100));
     L.dim = L.np + L.nw + 1 + L.ne;
+    if (L.dim > kMaxArpDim)
+      f.fail(p, "np + nw + 1 + ne = " + std::to_string(L.dim) +
+                    "; the ARP player takes a state of at most " + std::to_string(kMaxArpDim));
+    if (L.frames < L.order)
+      f.fail(p + ".frames", "expected at least order = " + std::to_string(L.order) +
+                                " training frames, got " + std::to_string(L.frames));
     L.mean = quantised(f, "lf.mean", 1, L.width, L.height);
     L.eigen = quantised(f, "lf.eigen", L.ne, L.width, L.height);
     L.params = f.require("lf.params", DType::kF32, {L.frames, L.dim}).view<float>();

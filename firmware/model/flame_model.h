@@ -25,6 +25,14 @@
 
 namespace candela::model {
 
+// What the runtime's players can play; FlameModel::from refuses more, so a
+// model that loads is a model that plays (elements/eigenflame/).
+inline constexpr int kMaxArpOrder = 4;  // ArpProcess: K previous states
+inline constexpr int kMaxArpDim = 64;   // ArpProcess: np + nw + 1 + ne
+inline constexpr int kMaxSuccessors =
+    1024;  // GraphWalker: jumps from one frame (sums stay in Q16.16)
+inline constexpr double kMaxClipFps = 1000;  // model frames per second x speed (<= 8) in Q16.16
+
 // A stack of quantised images: value = offset[i] + scale[i] * q.
 struct QuantisedImages {
   DType dtype = DType::kU16;

@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/file_read.h"
+
 namespace candela::model {
 
 size_t dtype_size(DType t) {
@@ -109,15 +111,16 @@ uint32_t model_checksum(const nlohmann::json& header_without_checksum, const uin
 
 ModelFile ModelFile::open(const std::string& path) {
   auto storage = std::make_shared<Storage>();
-  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0)
-    throw ModelError(Kind::kIo, path, "", std::string("cannot open: ") + std::strerror(errno));
-  struct stat st {};
-  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd);
-    throw ModelError(Kind::kIo, path, "", "not a regular file");
-  }
-  storage->size = static_cast<size_t>(st.st_size);
+  // Regular files only, opened non-blocking, within the size limit for a
+  // model (core/file_read.h), checked before anything is allocated or read.
+  auto bounded = [&]() {
+    try {
+      return BoundedFile::open(path, FileKind::kModel);
+    } catch (const ConfigError& e) {
+      throw ModelError(Kind::kIo, path, "", e.expected());
+    }
+  }();
+  storage->size = static_cast<size_t>(bounded.size());
   // Read once into private, page-aligned memory rather than mapping the file:
   // a mapped file that someone overwrites in place (`cp new.cmodel` over it
   // while candela runs) would kill the display with SIGBUS on the next touch
@@ -125,32 +128,19 @@ ModelFile ModelFile::open(const std::string& path) {
   if (storage->size > 0) {
     void* m =
         mmap(nullptr, storage->size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (m == MAP_FAILED) {
-      const int e = errno;
-      ::close(fd);
+    if (m == MAP_FAILED)
       throw ModelError(
           Kind::kIo, path, "",
-          "cannot allocate " + std::to_string(storage->size) + " bytes: " + std::strerror(e));
-    }
+          "cannot allocate " + std::to_string(storage->size) + " bytes: " + std::strerror(errno));
     storage->map = m;
     storage->data = static_cast<const uint8_t*>(m);
-    size_t got = 0;
-    while (got < storage->size) {
-      const ssize_t r = ::read(fd, static_cast<uint8_t*>(m) + got, storage->size - got);
-      if (r < 0 && errno == EINTR) continue;
-      if (r <= 0) {
-        const int e = r < 0 ? errno : 0;
-        ::close(fd);
-        throw ModelError(Kind::kIo, path, "",
-                         e ? std::string("cannot read: ") + std::strerror(e)
-                           : "the file shrank while it was read (" + std::to_string(got) + " of " +
-                                 std::to_string(storage->size) + " bytes); is it being rewritten?");
-      }
-      got += static_cast<size_t>(r);
+    try {
+      bounded.read_exactly(m);
+    } catch (const ConfigError& e) {
+      throw ModelError(Kind::kIo, path, "", e.expected());
     }
     mprotect(m, storage->size, PROT_READ);  // read-only from here, as a mapping was
   }
-  ::close(fd);
   return parse(std::move(storage), path);
 }
 

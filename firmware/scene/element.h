@@ -51,6 +51,9 @@ class Element {
   virtual ~Element() = default;
   virtual void update(const StepContext& step) = 0;
   virtual void draw(const FrameContext& frame, DrawPass pass) = 0;
+  // How many candles this element shows alight (the control socket's
+  // `state`); -1: it has no candles. Called once per frame: no allocation.
+  virtual int candles_lit() const { return -1; }
 };
 
 class ElementSpec {
@@ -59,6 +62,14 @@ class ElementSpec {
   // Needs a current GL context. Throws on failure; the scene logs it and
   // carries on without (or with a fallback for) this element.
   virtual std::unique_ptr<Element> create(const SceneContext& context) const = 0;
+  // Something the scene names that cannot be used, though the element will
+  // run with a fallback (an eigen-flame's broken model): logged at start-up,
+  // an error for `candela --check`. Empty: nothing wrong.
+  virtual std::string problem() const { return {}; }
+  // Memory and GPU cost in units of a typical element (the test pattern, a
+  // group of up to 512 candles: 1; an eigen-flame with its textures and
+  // buffers: 4); a scene may spend kMaxElementCost (scene/scene_file.h).
+  virtual unsigned cost() const { return 1; }
   Vec3 position;
   uint64_t seed = 0;  // 0: derived from the scene's seed
 };

@@ -1,11 +1,10 @@
 #include "scene/params.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_read.h"
 
 namespace candela {
 namespace {
@@ -13,7 +12,7 @@ namespace {
 std::string describe(const toml::node& n) {
   std::ostringstream s;
   if (n.is_string()) {
-    s << '"' << n.value<std::string>().value_or("") << '"';
+    return '"' + echo_value(n.value<std::string>().value_or("")) + '"';
   } else if (n.is_table()) {
     s << "a table";
   } else if (n.is_array()) {
@@ -24,6 +23,14 @@ std::string describe(const toml::node& n) {
   return s.str();
 }
 
+// Any TOML number as a double. toml++'s value<double>() refuses integers it
+// cannot represent exactly (above 2^53): those would silently read as 0.
+double as_double(const toml::node& n) {
+  if (const auto* i = n.as_integer()) return static_cast<double>(i->get());
+  if (const auto* f = n.as_floating_point()) return f->get();
+  return std::nan("");
+}
+
 std::string range(double min, double max) {
   std::ostringstream s;
   s << "[" << min << ", " << max << "]";
@@ -31,6 +38,12 @@ std::string range(double min, double max) {
 }
 
 }  // namespace
+
+std::string echo_value(std::string_view v) {
+  constexpr size_t kMaxEcho = 60;
+  if (v.size() <= kMaxEcho) return std::string(v);
+  return std::string(v.substr(0, kMaxEcho)) + "... (" + std::to_string(v.size()) + " characters)";
+}
 
 std::string resolve_relative(const std::string& scene_file, const std::string& path) {
   if (path.empty() || path[0] == '/') return path;
@@ -62,10 +75,17 @@ double ParamReader::number(std::string_view key, double def, double min, double 
   if (!n) return def;
   if (!n->is_number())
     fail(key, "expected a number in " + range(min, max) + ", got " + describe(*n));
-  const double v = n->value<double>().value_or(0);
+  const double v = as_double(*n);
   if (!std::isfinite(v) || v < min || v > max)
     fail(key, "expected a number in " + range(min, max) + ", got " + describe(*n));
   return v;
+}
+
+Fixed ParamReader::fixed(std::string_view key, double def, double min, double max) {
+  const double v = number(key, def, min, max);
+  if (!Fixed::in_range(v))  // a range wider than Q16.16 is a bug in the caller, not the scene
+    fail(key, "expected a number in [-32767, 32767] (fixed point), got " + std::to_string(v));
+  return Fixed::from_double(v);
 }
 
 int64_t ParamReader::integer(std::string_view key, int64_t def, int64_t min, int64_t max) {
@@ -103,7 +123,7 @@ std::string ParamReader::string(std::string_view key, std::string_view def,
   if (allowed.size()) {
     for (auto a : allowed)
       if (a == v) return v;
-    fail(key, "expected one of " + choices + ", got \"" + v + "\"");
+    fail(key, "expected one of " + choices + ", got \"" + echo_value(v) + "\"");
   }
   return v;
 }
@@ -117,8 +137,10 @@ Vec3 ParamReader::vec3(std::string_view key, Vec3 def) {
   for (size_t i = 0; i < 3; ++i) {
     const toml::node* e = a->get(i);
     if (!e->is_number()) fail(key, "expected an array of 3 numbers, got " + describe(*n));
-    v[i] = static_cast<float>(e->value<double>().value_or(0));
+    v[i] = static_cast<float>(as_double(*e));
     if (!std::isfinite(v[i])) fail(key, "expected finite numbers");
+    if (std::fabs(v[i]) > 1e6f)  // metres: far beyond any scene, and float maths
+      fail(key, "expected numbers within +-1e6, got " + describe(*e));
   }
   return {v[0], v[1], v[2]};
 }
@@ -130,7 +152,8 @@ Vec3 ParamReader::color(std::string_view key, Vec3 def) {
     const std::string s = *n->value<std::string>();
     unsigned r = 0, g = 0, b = 0;
     if (s.size() != 7 || s[0] != '#' || std::sscanf(s.c_str() + 1, "%2x%2x%2x", &r, &g, &b) != 3)
-      fail(key, "expected a colour \"#rrggbb\" or [r, g, b] in 0..1, got \"" + s + "\"");
+      fail(key,
+           "expected a colour \"#rrggbb\" or [r, g, b] in 0..1, got \"" + echo_value(s) + "\"");
     return {r / 255.0f, g / 255.0f, b / 255.0f};
   }
   if (n && !n->is_array()) {
@@ -147,8 +170,11 @@ std::string ParamReader::path(std::string_view key, std::string_view def) {
   const std::string p = string(key, def);
   if (p.empty() || !has(key)) return p;
   const std::string full = resolve_relative(file_, p);
-  if (access(full.c_str(), R_OK) != 0)
-    fail(key, "expected a readable file, but '" + full + "' cannot be read");
+  // Opened non-blocking and checked with fstat: a FIFO or device named here
+  // is refused now, never read (core/file_read.h).
+  const std::string why = regular_file_problem(full);
+  if (!why.empty())
+    fail(key, "expected a readable regular file, but '" + echo_value(full) + "': " + why);
   return full;
 }
 
@@ -177,7 +203,8 @@ void ParamReader::finish() const {
     if (!used_.contains(k.str())) {
       std::string known;
       for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
-      throw ConfigError(file_, key_path(k.str()), "unknown key (known here: " + known + ")");
+      throw ConfigError(file_, key_path(echo_value(k.str())),
+                        "unknown key (known here: " + known + ")");
     }
   }
 }

@@ -28,9 +28,8 @@ class ParamReader {
   void consume(std::string_view key) { used_.emplace(key); }
 
   double number(std::string_view key, double def, double min, double max);
-  Fixed fixed(std::string_view key, double def, double min, double max) {
-    return Fixed::from_double(number(key, def, min, max));
-  }
+  // A number held as Q16.16: [min, max] must lie inside what Fixed holds.
+  Fixed fixed(std::string_view key, double def, double min, double max);
   int64_t integer(std::string_view key, int64_t def, int64_t min, int64_t max);
   bool boolean(std::string_view key, bool def);
   std::string string(std::string_view key, std::string_view def,
@@ -56,6 +55,10 @@ class ParamReader {
   std::string prefix_;
   std::set<std::string, std::less<>> used_;
 };
+
+// A value as echoed in a message: cut short (a 10 MB bad string must not
+// become a 10 MB log line), saying how long it was.
+std::string echo_value(std::string_view v);
 
 // Where relative paths in a scene are resolved: the scene file's folder.
 std::string resolve_relative(const std::string& scene_file, const std::string& path);

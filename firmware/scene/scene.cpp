@@ -14,14 +14,17 @@ uint64_t mix_seed(uint64_t seed, uint64_t index) {
 }
 }  // namespace
 
-Scene::Scene(const SceneDesc& desc, uint64_t seed_override)
+Scene::Scene(const SceneDesc& desc, uint64_t seed_override, const std::atomic<bool>* stop)
     : background_(desc.background), camera_(desc.camera), wind_(desc.wind) {
   const uint64_t seed = seed_override ? seed_override : desc.seed;
   for (size_t i = 0; i < desc.elements.size(); ++i) {
+    if (stop && stop->load(std::memory_order_relaxed)) break;  // SIGTERM: do not make the rest
     const auto& e = desc.elements[i];
     SceneContext ctx;
     ctx.scene_file = desc.file;
     ctx.seed = e.spec->seed ? e.spec->seed : mix_seed(seed, i);
+    if (const std::string p = e.spec->problem(); !p.empty())
+      LOG_ERROR("%s: %s", desc.file.c_str(), p.c_str());
     try {
       elements_.push_back(e.spec->create(ctx));
     } catch (const std::exception& ex) {
@@ -52,5 +55,12 @@ void Scene::draw(FrameContext& frame) {
 }
 
 void Scene::on_key(Key key) { wind_.on_key(key); }
+
+int Scene::candles_lit() const {
+  int lit = -1;
+  for (const auto& e : elements_)
+    if (const int n = e->candles_lit(); n >= 0) lit = (lit < 0 ? 0 : lit) + n;
+  return lit;
+}
 
 }  // namespace candela

@@ -3,6 +3,7 @@
 // draw() per frame; keys become wind events.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -17,7 +18,9 @@ class Scene : public DisplayEvents {
  public:
   // Needs a current GL context. An element that fails to create is logged and
   // left out: the display never goes dark because of one bad element.
-  Scene(const SceneDesc& desc, uint64_t seed_override = 0);
+  // `stop`, when set (a signal), ends the building early: the scene then has
+  // the elements made so far.
+  Scene(const SceneDesc& desc, uint64_t seed_override = 0, const std::atomic<bool>* stop = nullptr);
   void update(const StepContext& step);
   void draw(FrameContext& frame);
   void on_key(Key key) override;
@@ -25,6 +28,8 @@ class Scene : public DisplayEvents {
   WindField& wind() { return wind_; }
   size_t element_count() const { return elements_.size(); }
   size_t failed_elements() const { return failed_; }
+  // Candles alight over all elements; -1 if no element has candles.
+  int candles_lit() const;
 
  private:
   Vec3 background_;

@@ -1,11 +1,10 @@
 #include "scene/scene_file.h"
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
+#include <cmath>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_read.h"
 #include "input/input_config.h"
 #include "scene/params.h"
 
@@ -14,8 +13,64 @@ std::string_view find(std::string_view name);
 }
 
 namespace candela {
+namespace {
+
+// toml++ recurses once per part of a dotted key or table header (and per
+// nested array or inline table): a 100 KB line of `a.a.a...` overflows the
+// stack inside parse(). Refuse deep nesting before toml++ sees it. A cheap
+// scan: strings and comments skipped, dots counted since the last = , [ ] { }
+// or newline (so `a . a` counts too; a float's one dot stays well below).
+void check_nesting(std::string_view t, const std::string& name) {
+  int line = 1, dots = 0, brackets = 0;
+  auto fail = [&](const std::string& what) {
+    throw ConfigError(
+        name, "line " + std::to_string(line),
+        what + " (more than " + std::to_string(kMaxSceneNesting) + " levels; a scene needs a few)");
+  };
+  const size_t n = t.size();
+  for (size_t i = 0; i < n; ++i) {
+    const char c = t[i];
+    if (c == '\n') {
+      ++line;
+      dots = 0;
+    } else if (c == '#') {
+      while (i + 1 < n && t[i + 1] != '\n') ++i;
+    } else if (c == '"' || c == '\'') {
+      const bool multi = i + 2 < n && t[i + 1] == c && t[i + 2] == c;
+      i += multi ? 3 : 1;
+      for (; i < n; ++i) {
+        if (t[i] == '\n') {
+          if (!multi) break;  // toml++ reports the unterminated string
+          ++line;
+        } else if (c == '"' && t[i] == '\\') {
+          if (i + 1 < n && t[i + 1] == '\n') ++line;
+          ++i;
+        } else if (t[i] == c && (!multi || (i + 2 < n && t[i + 1] == c && t[i + 2] == c))) {
+          if (multi) i += 2;
+          // TOML allows up to two more quotes just before a closing delimiter.
+          while (multi && i + 1 < n && t[i + 1] == c) ++i;
+          break;
+        }
+      }
+      if (i < n && t[i] == '\n') --i;  // counted by the loop
+    } else if (c == '.') {
+      if (++dots >= kMaxSceneNesting) fail("a dotted key or table header nests too deep");
+    } else if (c == '[' || c == '{') {
+      dots = 0;
+      if (++brackets > kMaxSceneNesting) fail("arrays or inline tables nest too deep");
+    } else if (c == ']' || c == '}') {
+      dots = 0;
+      if (brackets > 0) --brackets;
+    } else if (c == '=' || c == ',') {
+      dots = 0;
+    }
+  }
+}
+
+}  // namespace
 
 SceneDesc load_scene_text(std::string_view text, const std::string& name) {
+  check_nesting(text, name);
   toml::table root;
   try {
     root = toml::parse(text, name);
@@ -32,6 +87,13 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
   ParamReader display = top.table("display");
   scene.width = static_cast<int>(display.integer("width", 0, 0, 16384));
   scene.height = static_cast<int>(display.integer("height", 0, 0, 16384));
+  if (display.has("width") != display.has("height"))
+    display.fail(display.has("width") ? "height" : "width",
+                 "missing: give both width and height, or neither (the display's own size)");
+  if (display.has("width") && (scene.width || scene.height))  // 0 x 0: the display's own
+    for (const auto& [k, v] : {std::pair{"width", scene.width}, std::pair{"height", scene.height}})
+      if (v < 16)
+        display.fail(k, "expected at least 16 pixels (as --size), got " + std::to_string(v));
   scene.refresh_hz = static_cast<int>(display.integer("refresh", 0, 0, 1000));
   scene.steps_per_second = static_cast<int>(display.integer("steps_per_second", 60, 10, 1000));
   display.finish();
@@ -44,6 +106,21 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
   scene.camera.position = cam.vec3("position", scene.camera.position);
   scene.camera.target = cam.vec3("target", scene.camera.target);
   scene.camera.fov_deg = static_cast<float>(cam.number("fov", scene.camera.fov_deg, 5, 150));
+  {
+    // look_at needs a direction to look in, and one not along "up" (0, 1, 0):
+    // otherwise the view is undefined and only the background is drawn.
+    const Vec3 d = scene.camera.target - scene.camera.position;
+    const double len = std::sqrt(static_cast<double>(d.x) * d.x + static_cast<double>(d.y) * d.y +
+                                 static_cast<double>(d.z) * d.z);
+    if (!(len > 1e-4))
+      cam.fail("target",
+               "expected a point away from camera.position (the camera must look at "
+               "something), got the same point");
+    if (std::fabs(d.y / len) > 0.9999)
+      cam.fail("target", std::string("expected the camera to look less than 89 degrees ") +
+                             (d.y < 0 ? "down" : "up") +
+                             " (straight along the vertical its view is undefined)");
+  }
   cam.finish();
 
   ParamReader wind = top.table("wind");
@@ -55,6 +132,11 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
     const toml::array* arr = elems->as_array();
     if (!arr || !arr->is_array_of_tables())
       throw ConfigError(name, "element", "expected an array of tables ([[element]])");
+    if (arr->size() > kMaxElements)
+      throw ConfigError(name, "element",
+                        "expected at most " + std::to_string(kMaxElements) +
+                            " [[element]] tables, got " + std::to_string(arr->size()));
+    unsigned cost = 0;
     for (size_t i = 0; i < arr->size(); ++i) {
       const toml::table* t = arr->get(i)->as_table();
       const std::string prefix = "element[" + std::to_string(i) + "]";
@@ -67,7 +149,7 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
       const ElementKind* found = nullptr;
       for (const auto& k : element_kinds())
         if (k.name == kind) found = &k;
-      if (!found) r.fail("kind", "expected one of " + known + ", got \"" + kind + "\"");
+      if (!found) r.fail("kind", "expected one of " + known + ", got \"" + echo_value(kind) + "\"");
       SceneDesc::Entry e;
       e.kind = kind;
       e.name = r.string("name", kind + " " + std::to_string(i));
@@ -76,6 +158,13 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
       e.spec = found->parse(r);
       e.spec->position = pos;
       e.spec->seed = seed;
+      cost += e.spec->cost();
+      if (cost > kMaxElementCost)
+        throw ConfigError(name, prefix,
+                          "the scene's elements would cost more than the budget of " +
+                              std::to_string(kMaxElementCost) + " units (" + kind + " costs " +
+                              std::to_string(e.spec->cost()) +
+                              "; e.g. at most 16 eigen-flames or 64 candle groups)");
       scene.elements.push_back(std::move(e));
     }
   }
@@ -86,12 +175,19 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
 }
 
 SceneDesc load_scene_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw ConfigError(path, "", std::string("cannot open scene file: ") + std::strerror(errno));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return load_scene_text(ss.str(), path);
+  return load_scene_text(read_bounded_file(path, FileKind::kScene), path);
+}
+
+std::vector<std::string> scene_problems(const SceneDesc& scene) {
+  std::vector<std::string> out;
+  if (scene.elements.empty())
+    out.push_back(scene.file +
+                  ": element: the scene has no [[element]]; the display would stay black");
+  for (const auto& e : scene.elements) {
+    const std::string p = e.spec->problem();
+    if (!p.empty()) out.push_back(scene.file + ": " + p);
+  }
+  return out;
 }
 
 SceneDesc load_builtin_scene(const std::string& name) {

@@ -37,10 +37,22 @@ struct SceneDesc {
   std::vector<InputSpec> inputs;  // [[input]]: GPIO sensors, camera (firmware/input)
 };
 
-// Throws ConfigError (file, key, what was expected).
+// Bounds on what a scene may ask for (README: "Limits"). Deeper TOML nesting
+// would overflow toml++'s stack; more elements would exhaust memory.
+inline constexpr int kMaxSceneNesting = 32;
+inline constexpr size_t kMaxElements = 64;
+inline constexpr unsigned kMaxElementCost = 64;  // sum of ElementSpec::cost()
+
+// Throws ConfigError (file, key, what was expected). The file must be a
+// regular file within the scene size limit (core/file_read.h).
 SceneDesc load_scene_file(const std::string& path);
 SceneDesc load_scene_text(std::string_view text, const std::string& name);
 // Built-in scenes ("default", "test-pattern", ...): firmware/scenes/*.toml.
 SceneDesc load_builtin_scene(const std::string& name);
+
+// What makes a loaded scene useless though it parses: no elements (a black
+// screen), or an element that would fall back (ElementSpec::problem()).
+// Each entry reads "file: key: why". `candela --check` fails on any.
+std::vector<std::string> scene_problems(const SceneDesc& scene);
 
 }  // namespace candela

@@ -1,5 +1,7 @@
 #include "wind/wind_field.h"
 
+#include <cmath>
+
 #include "core/log.h"
 #include "scene/element.h"
 #include "scene/params.h"
@@ -14,8 +16,12 @@ namespace candela {
 WindSpec parse_wind(ParamReader& r) {
   WindSpec s;
   s.direction = r.vec3("direction", s.direction);
-  if (s.direction.x * s.direction.x + s.direction.z * s.direction.z < 1e-6f)
+  const double dx = s.direction.x, dz = s.direction.z, len = std::sqrt(dx * dx + dz * dz);
+  if (!(len >= 1e-3) || !std::isfinite(len))
     r.fail("direction", "expected a direction with an x or z component, e.g. [1, 0, 0]");
+  // Only the direction matters: kept as a unit vector, so [40000, 0, 0] cannot
+  // overflow the fixed-point maths the field runs on.
+  s.direction = {static_cast<float>(dx / len), 0.0f, static_cast<float>(dz / len)};
   s.speed = r.fixed("speed", 0, 0, 30);
   s.gust_speed = r.fixed("gust_speed", s.gust_speed.to_double(), 0, 30);
   s.gust_seconds = r.fixed("gust_seconds", s.gust_seconds.to_double(), 0.1, 30);

@@ -132,6 +132,40 @@ TEST(GraphWalker, HundredThousandStepsNeverReplayAStretch) {
               walk[static_cast<size_t>(i) + 1]);
 }
 
+// Issue 15: a jump ~1e6 x the median cost rounded its preference to 0, and a
+// frame whose only way on was such a jump divided by it (SIGFPE in step()).
+TEST(GraphWalker, ExtremeJumpCostsStillWalkTheGraph) {
+  // Ten frames in a ring: 0 -> 1 -> ... -> 9 natural steps (cost 1); from 9
+  // the only way on is a jump back to 0 costing 1e6; frame 4 also has one.
+  const int f = 10;
+  std::vector<int32_t> offsets{0}, succ;
+  std::vector<float> cost;
+  for (int i = 0; i < f; ++i) {
+    if (i + 1 < f) succ.push_back(i + 1), cost.push_back(1.0f);
+    if (i == 4 || i == 9) succ.push_back(0), cost.push_back(1e6f);
+    offsets.push_back(static_cast<int32_t>(succ.size()));
+  }
+  std::vector<float> weights(static_cast<size_t>(f) * 2, 0.0f);
+  for (int i = 0; i < f; ++i) weights[static_cast<size_t>(2 * i)] = static_cast<float>(i);
+  WalkSettings s;
+  s.max_stretch = 100000;  // longer than the run: the no-repeat rule never steps in
+  s.window = 1;
+  GraphWalker walker({offsets, succ, cost}, weights, 2, std::vector<Fixed>(f), s, 5);
+  int32_t from = walker.current();
+  int jumps_from_4 = 0, visits_4 = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const int32_t to = walker.step(Fixed{});
+    bool allowed = false;
+    for (int32_t k = offsets[from]; k < offsets[from + 1]; ++k) allowed |= succ[k] == to;
+    ASSERT_TRUE(allowed) << "step " << i << ": " << from << " -> " << to << " is not in the graph";
+    if (from == 4) ++visits_4, jumps_from_4 += to == 0;
+    from = to;
+  }
+  // The costly jump from 4 keeps the smallest preference: almost never taken.
+  EXPECT_GT(visits_4, 1000);
+  EXPECT_LT(jumps_from_4, visits_4 / 100);
+}
+
 // --- ARP -------------------------------------------------------------------
 
 // A known, stable AR(2) over D parameters, and a training sequence from it.

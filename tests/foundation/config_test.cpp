@@ -2,10 +2,12 @@
 // key and what was expected.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <fstream>
 #include <string>
 
 #include "core/error.h"
+#include "scene/scene.h"
 #include "scene/scene_file.h"
 
 namespace candela {
@@ -108,6 +110,102 @@ TEST(SceneConfig, ValidSceneLoadsWithItsValues) {
   ASSERT_EQ(s.elements.size(), 1u);
   EXPECT_EQ(s.elements[0].name, "bars");
   EXPECT_FLOAT_EQ(s.elements[0].spec->position.z, 3);
+}
+
+// Issue 15 (2): toml++ recursed once per part of a dotted key or header; 50,000
+// parts overflowed its stack. Refused before parsing, naming the line.
+TEST(SceneConfig, DeepNestingIsRefusedBeforeParsing) {
+  const std::string deep = "a" + [] {
+    std::string s;
+    for (int i = 0; i < 50000; ++i) s += ".a";
+    return s;
+  }();
+  for (const std::string& text : {"seed = 1\n" + deep + " = 1\n", "\n\n[" + deep + "]\n",
+                                  "[[" + deep + "]]\n", "x = " + std::string(50000, '[')}) {
+    const auto e = error_of(text);
+    EXPECT_EQ(e.file(), "bad.toml");
+    EXPECT_EQ(e.key().rfind("line ", 0), 0u) << e.what();
+    EXPECT_NE(e.expected().find("too deep"), std::string::npos) << e.what();
+  }
+  // What real scenes nest is fine, and dots in strings, comments and floats are not nesting.
+  const SceneDesc s = load_scene_text(
+      "# a.b.c.d.e.f.g.h.i.j.k.l.m.n.o.p.q.r.s.t.u.v.w.x.y.z.a.b.c.d.e.f.g.h\n"
+      "[camera]\nposition = [0.5, 0.25, 2.5]\n[[element]]\nkind = \"test_pattern\"\n"
+      "name = \"...................................................\"\n",
+      "ok.toml");
+  EXPECT_FLOAT_EQ(s.camera.position.x, 0.5f);
+}
+
+// Issue 15 (7): integers beyond 2^53 read as 0 in number keys, which is in many ranges.
+TEST(SceneConfig, HugeIntegersInNumberKeysAreRangeChecked) {
+  const auto e = error_of("[wind]\nspeed = 9007199254740993\n");
+  EXPECT_EQ(e.key(), "wind.speed");
+  EXPECT_NE(e.expected().find("got 9007199254740993"), std::string::npos) << e.what();
+  const auto v = error_of("[camera]\nposition = [0, 9007199254740993, 2]\n");
+  EXPECT_EQ(v.key(), "camera.position");
+}
+
+// Issue 15 (11): degenerate scenes that used to pass.
+TEST(SceneConfig, DegenerateCameraAndDisplayAreRefused) {
+  EXPECT_EQ(error_of("[camera]\nposition = [1, 1, 1]\ntarget = [1, 1, 1]\n").key(),
+            "camera.target");
+  EXPECT_EQ(error_of("[camera]\nposition = [0, 2, 0]\ntarget = [0, 0, 0]\n").key(),
+            "camera.target");
+  EXPECT_EQ(error_of("[camera]\nposition = [0, -2, 0]\ntarget = [0, 0, 0]\n").key(),
+            "camera.target");
+  EXPECT_EQ(error_of("[display]\nwidth = 100\n").key(), "display.height");
+  EXPECT_EQ(error_of("[display]\nheight = 100\n").key(), "display.width");
+  EXPECT_EQ(error_of("[display]\nwidth = 1\nheight = 1\n").key(), "display.width");
+  EXPECT_EQ(error_of("[display]\nwidth = 640\nheight = 8\n").key(), "display.height");
+  // Looking down steeply but not straight down is fine.
+  EXPECT_NO_THROW(load_scene_text("[camera]\nposition = [0, 2, 0.1]\ntarget = [0, 0, 0]\n", "ok"));
+}
+
+TEST(SceneConfig, WindDirectionIsOnlyADirection) {
+  // 40000 overflowed the Q16.16 maths of the wind field; now it is normalised.
+  const SceneDesc s = load_scene_text("[wind]\ndirection = [40000, 0, 30000]\n", "w.toml");
+  EXPECT_FLOAT_EQ(s.wind.direction.x, 0.8f);
+  EXPECT_FLOAT_EQ(s.wind.direction.z, 0.6f);
+  EXPECT_EQ(error_of("[wind]\ndirection = [0, 1, 0]\n").key(), "wind.direction");
+}
+
+TEST(SceneConfig, ElementCountIsBounded) {
+  std::string many;
+  for (int i = 0; i < 65; ++i) many += "[[element]]\nkind = \"test_pattern\"\n";
+  const auto e = error_of(many);
+  EXPECT_EQ(e.key(), "element");
+  EXPECT_NE(e.expected().find("at most 64"), std::string::npos) << e.what();
+}
+
+TEST(SceneConfig, LongBadValuesAreNotEchoedWhole) {
+  const auto e = error_of("[background]\ncolor = \"" + std::string(10 << 20, 'x') + "\"\n");
+  EXPECT_EQ(e.key(), "background.color");
+  EXPECT_LT(std::string(e.what()).size(), 300u) << std::string(e.what()).substr(0, 300);
+  EXPECT_NE(e.expected().find("10485760 characters"), std::string::npos);
+  // Nor a long unknown key, or a long element kind.
+  const auto k = error_of("[camera]\n" + std::string(100000, 'k') + " = 1\n");
+  EXPECT_LT(std::string(k.what()).size(), 300u);
+  const auto kind = error_of("[[element]]\nkind = \"" + std::string(100000, 'q') + "\"\n");
+  EXPECT_EQ(kind.key(), "element[0].kind");
+  EXPECT_LT(std::string(kind.what()).size(), 300u);
+}
+
+TEST(SceneConfig, AnEmptySceneIsAProblem) {
+  const SceneDesc s = load_scene_text("seed = 2\n", "empty.toml");
+  const auto p = scene_problems(s);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].rfind("empty.toml: element: the scene has no [[element]]", 0), 0u) << p[0];
+  EXPECT_TRUE(scene_problems(load_builtin_scene("default")).empty());
+}
+
+// Issue 15 (6): a SIGTERM while the scene is built stops the building.
+TEST(SceneConfig, BuildingStopsWhenAskedTo) {
+  const SceneDesc s = load_scene_text(
+      "[[element]]\nkind = \"test_pattern\"\n[[element]]\nkind = \"test_pattern\"\n", "two.toml");
+  std::atomic<bool> stop{true};
+  Scene scene(s, 0, &stop);  // elements need GL to be made; none is attempted
+  EXPECT_EQ(scene.element_count(), 0u);
+  EXPECT_EQ(scene.failed_elements(), 0u);
 }
 
 TEST(SceneConfig, EveryBuiltInSceneIsValid) {

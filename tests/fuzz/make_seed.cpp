@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "model/model_file.h"
 #include "model/model_writer.h"
 
 int main(int argc, char** argv) {
@@ -41,5 +42,32 @@ int main(int argc, char** argv) {
   mw.add_i32("graph.successors", {3}, succ);
   mw.add_f32("graph.cost", {3}, cost);
   mw.write(std::string(argv[1]) + "/seed.cmodel");
+  // Issue 15 regression input: frame 2's only way on is a jump costing 1e7 x
+  // the median, whose preference rounded to 0 and was divided by (SIGFPE).
+  std::vector<float> extreme{1, 1, 1e7f};
+  mw.add_f32("graph.cost", {3}, extreme);
+  mw.write(std::string(argv[1]) + "/regress-extreme-jump-cost.cmodel");
+  mw.add_f32("graph.cost", {3}, cost);
+  // The same with a Learning Flames part (an order-2 ARP over 2 + 2 + 1 + 1
+  // parameters), so the fuzzer reaches the ARP and shape players too.
+  const int np = 2, nw = 2, ne = 1, d = np + nw + 1 + ne, t = 4, lw = 3, lh = 4;
+  nlohmann::json info = cm::ModelFile::from_bytes(mw.bytes(), "seed").info();
+  info["learning_flames"] = {{"np", np},    {"nw", nw},      {"ne", ne},
+                             {"order", 2},  {"width", lw},   {"height", lh},
+                             {"frames", t}, {"base_y", 3.0}, {"span", 2.5}};
+  mw.set_info(info);
+  std::vector<float> lmean(lw * lh, 40.0f), leig(ne * lw * lh, 0.3f), params(t * d),
+      a(2 * d * d, 0.0f), dd(d, 0.5f), b(d * d, 0.0f);
+  for (size_t i = 0; i < params.size(); ++i) params[i] = 1.0f + static_cast<float>(i % 7);
+  for (int i = 0; i < d; ++i) a[i * d + i] = 0.5f, b[i * d + i] = 0.1f;
+  cm::add_quantised(mw, "lf.mean", cm::quantise_images(lmean.data(), 1, lw * lh, cm::DType::kU8), 1,
+                    lw, lh);
+  cm::add_quantised(mw, "lf.eigen", cm::quantise_images(leig.data(), ne, lw * lh, cm::DType::kU8),
+                    ne, lw, lh);
+  mw.add_f32("lf.params", {t, d}, params);
+  mw.add_f32("arp.A", {2, d, d}, a);
+  mw.add_f32("arp.d", {d}, dd);
+  mw.add_f32("arp.B", {d, d}, b);
+  mw.write(std::string(argv[1]) + "/seed-lf.cmodel");
   return 0;
 }

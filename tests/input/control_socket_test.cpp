@@ -2,6 +2,7 @@
 // reach the wind field, state replies, mistakes answered without effect; and
 // the whole `candela` program driven through --control.
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/socket.h>
@@ -17,7 +18,9 @@
 #include <regex>
 #include <string>
 
+#include "core/error.h"
 #include "input/control_channel.h"
+#include "input/input_event.h"
 #include "input/input_hub.h"
 #include "scene/element.h"
 
@@ -49,6 +52,7 @@ class Client {
   }
   ~Client() { close(fd_); }
   bool connected() const { return connected_; }
+  int fd() const { return fd_; }
   std::string ask(const std::string& line) {
     const std::string msg = line + "\n";
     if (send(fd_, msg.data(), msg.size(), MSG_NOSIGNAL) != static_cast<ssize_t>(msg.size()))
@@ -93,11 +97,113 @@ TEST(ControlCommands, Parse) {
   EXPECT_EQ(c.event.x, Fixed::from_int(10));
   EXPECT_EQ(parse_control_command("state", w).kind, ControlCommand::Kind::kState);
   for (const char* bad : {"", "gust", "gust up", "gust left fast", "gust left 99", "wind 1",
-                          "wind nan 0", "state now", "dance", "gust left 1 2"}) {
+                          "wind nan 0", "state now", "dance", "gust left 1 2", "wind 0x10 0",
+                          "wind 1e1 0", "wind inf 0", "gust left 0x2", "wind 1. 0x"}) {
     c = parse_control_command(bad, w);
     EXPECT_EQ(c.kind, ControlCommand::Kind::kError) << bad;
     EXPECT_FALSE(c.error.empty()) << bad;
   }
+}
+
+// Issue 15 (12): strtod took "0x10" as 16; and a long bad word is not echoed whole.
+TEST(ControlCommands, OnlyPlainDecimalNumbers) {
+  WindSpec w;
+  auto c = parse_control_command("wind 0x10 0", w);
+  EXPECT_EQ(c.kind, ControlCommand::Kind::kError);
+  c = parse_control_command("wind +1.5 -0.5", w);
+  ASSERT_EQ(c.kind, ControlCommand::Kind::kWind);
+  EXPECT_EQ(c.event.x, Fixed::from_ratio(3, 2));
+  c = parse_control_command("gust left " + std::string(900, '9'), w);
+  ASSERT_EQ(c.kind, ControlCommand::Kind::kError);
+  EXPECT_LT(c.error.size(), 200u) << c.error;
+  c = parse_control_command(std::string(900, 'x'), w);
+  EXPECT_LT(c.error.size(), 300u) << c.error;
+}
+
+TEST(ControlSocket, StateReportsCandlesLit) {
+  const std::string dir = temp_dir();
+  InputHub hub({}, WindSpec{}, dir + "/ctl");
+  hub.start();
+  Client client(dir + "/ctl");
+  ASSERT_TRUE(client.connected());
+  EXPECT_NE(client.ask("state").find("\"candles_lit\":null"), std::string::npos);  // no candles
+  hub.publish(1, 1, WindSample{}, 5);
+  EXPECT_EQ(json_number(client.ask("state"), "candles_lit"), 5);
+  hub.stop();
+  fs::remove_all(dir);
+}
+
+// Issue 15 (9): a second instance used to take a live socket over (and delete it on exit).
+TEST(ControlSocket, ASecondServerCannotStealALiveSocket) {
+  const std::string dir = temp_dir();
+  const std::string path = dir + "/ctl";
+  {
+    ControlServer first(path);
+    try {
+      ControlServer second(path);
+      ADD_FAILURE() << "a second server took the socket";
+    } catch (const RuntimeError& e) {
+      EXPECT_NE(std::string(e.what()).find("another candela is serving it"), std::string::npos)
+          << e.what();
+    }
+    // The first one's socket is still there and still answers.
+    Client c(path);
+    EXPECT_TRUE(c.connected());
+  }
+  EXPECT_FALSE(fs::exists(path));
+  // A socket left by a server that died (no lock held) is stale: replaced.
+  {
+    const int fd = socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un a{};
+    a.sun_family = AF_UNIX;
+    std::strncpy(a.sun_path, path.c_str(), sizeof a.sun_path - 1);
+    ASSERT_EQ(bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+    close(fd);
+  }
+  ASSERT_TRUE(fs::exists(path));
+  EXPECT_NO_THROW(ControlServer again(path));
+  fs::remove_all(dir);
+}
+
+// Issue 15 (9): eight silent clients used to lock everyone out.
+TEST(ControlSocket, SilentClientsCannotLockEveryoneOut) {
+  const std::string dir = temp_dir();
+  InputHub hub({}, WindSpec{}, dir + "/ctl");
+  hub.start();
+  std::vector<std::unique_ptr<Client>> silent;
+  for (size_t i = 0; i < ControlServer::kMaxClients; ++i) {
+    silent.push_back(std::make_unique<Client>(dir + "/ctl"));
+    ASSERT_TRUE(silent.back()->connected());
+  }
+  Client late(dir + "/ctl");
+  ASSERT_TRUE(late.connected());
+  EXPECT_EQ(late.ask("ping"), "pong");  // before: no reply (never accepted)
+  hub.stop();
+  fs::remove_all(dir);
+}
+
+TEST(ControlSocket, IdleClientsTimeOut) {
+  const std::string dir = temp_dir();
+  ControlServer server(dir + "/ctl", 100);
+  Client idle(dir + "/ctl");
+  ASSERT_TRUE(idle.connected());
+  std::vector<pollfd> fds;
+  const auto deadline = Clock::now() + std::chrono::seconds(10);
+  std::string said;
+  // Serve until the server closes the silent client (reading what it says).
+  for (bool closed = false; !closed && Clock::now() < deadline;) {
+    fds.clear();
+    server.add_fds(fds);
+    poll(fds.data(), fds.size(), 20);
+    server.serve(fds.data(), fds.size(), [](std::string_view) { return std::string("ok"); });
+    server.expire_idle(monotonic_ns());
+    char buf[128];
+    const ssize_t n = recv(idle.fd(), buf, sizeof buf, MSG_DONTWAIT);
+    if (n > 0) said.append(buf, static_cast<size_t>(n));
+    closed = n == 0;
+  }
+  EXPECT_EQ(said, "error: idle for too long; closing\n");
+  fs::remove_all(dir);
 }
 
 TEST(ControlSocket, RoundTripReachesTheWindField) {
@@ -113,9 +219,10 @@ TEST(ControlSocket, RoundTripReachesTheWindField) {
   ASSERT_EQ(stat(path.c_str(), &st), 0);
   EXPECT_TRUE(S_ISSOCK(st.st_mode));
   EXPECT_EQ(st.st_mode & 0777, 0600u);
-  // No leftovers of the private bind folder beside it.
+  // No leftovers of the private bind folder beside it; only its lock file.
   size_t entries = 0;
-  for (const auto& e : fs::directory_iterator(dir)) entries += e.path().filename() != "ctl";
+  for (const auto& e : fs::directory_iterator(dir))
+    entries += e.path().filename() != "ctl" && e.path().filename() != "ctl.lock";
   EXPECT_EQ(entries, 0u);
 
   Client client(path);
@@ -206,6 +313,44 @@ TEST(ControlSocket, CandelaProgramRegistersAGust) {
   waitpid(pid, &status, 0);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
   EXPECT_FALSE(fs::exists(path));
+  fs::remove_all(dir);
+}
+
+// Issue 15 (12): `state` said "candles_lit": null whatever the scene showed.
+// The built-in scene's seven candles are counted, and a blowout puts some out.
+TEST(ControlSocket, CandelaProgramCountsCandlesLit) {
+  const std::string dir = temp_dir();
+  const std::string path = dir + "/ctl";
+  const std::string bin = std::string(CANDELA_BINARY_DIR) + "/firmware/candela";
+  std::vector<std::string> args = {bin,         "--display", "headless",    "--size", "64x48",
+                                   "--control", path,        "--log-level", "warn"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, bin.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  std::unique_ptr<Client> client;
+  double lit = NAN;
+  while (Clock::now() < deadline && !(lit >= 0)) {
+    if (!client && fs::exists(path)) {
+      client = std::make_unique<Client>(path);
+      if (!client->connected()) client.reset();
+    }
+    if (client) lit = json_number(client->ask("state"), "candles_lit");  // null until drawn
+    usleep(10000);  // polling for the first frame, bounded by the deadline
+  }
+  EXPECT_EQ(lit, 7) << "the built-in scene has seven candles, all lit at first";
+  if (client) {
+    EXPECT_EQ(client->ask("blowout front 30"), "ok");
+    while (Clock::now() < deadline && lit == 7)
+      lit = json_number(client->ask("state"), "candles_lit");
+    EXPECT_LT(lit, 7) << "a 30 m/s blowout put no candle out";
+  }
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
   fs::remove_all(dir);
 }
 

@@ -1,6 +1,8 @@
 // The model file round-trips bit-exactly and every kind of damage is refused
 // with its own error that names the file and the problem.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -8,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "model/flame_model.h"
 #include "model/model_writer.h"
@@ -56,6 +59,38 @@ cm::ModelWriter small_model(int components = 3) {
   mw.add_i32("graph.offsets", {f + 1}, offsets);
   mw.add_i32("graph.successors", {6}, succ);
   mw.add_f32("graph.cost", {6}, cost);
+  return mw;
+}
+
+// Adds a Learning Flames part: an ARP of `order` over np + nw + 1 + ne parameters.
+cm::ModelWriter with_flames(cm::ModelWriter mw, int order, int np = 4, int nw = 4, int ne = 2,
+                            int frames = 6) {
+  const int w = 4, h = 5, d = np + nw + 1 + ne;
+  nlohmann::json info = cm::ModelFile::from_bytes(mw.bytes(), "m").info();
+  info["learning_flames"] = {{"np", np},         {"nw", nw},      {"ne", ne},
+                             {"order", order},   {"width", w},    {"height", h},
+                             {"frames", frames}, {"base_y", 4.0}, {"span", 2.5}};
+  mw.set_info(info);
+  const size_t px = static_cast<size_t>(w) * h;
+  std::vector<float> mean(px, 30.0f), eig(static_cast<size_t>(ne) * px, 0.5f);
+  cm::add_quantised(mw, "lf.mean", cm::quantise_images(mean.data(), 1, px, cm::DType::kU8), 1, w,
+                    h);
+  cm::add_quantised(mw, "lf.eigen", cm::quantise_images(eig.data(), ne, px, cm::DType::kU8), ne, w,
+                    h);
+  std::vector<float> params(static_cast<size_t>(frames) * d, 1.0f),
+      a(static_cast<size_t>(order) * d * d, 0.0f), dd(d, 0.1f), b(static_cast<size_t>(d) * d, 0.0f);
+  mw.add_f32("lf.params", {frames, d}, params);
+  mw.add_f32("arp.A", {order, d, d}, a);
+  mw.add_f32("arp.d", {d}, dd);
+  mw.add_f32("arp.B", {d, d}, b);
+  return mw;
+}
+
+// The same model with its info edited.
+cm::ModelWriter edited(cm::ModelWriter mw, const std::function<void(nlohmann::json&)>& edit) {
+  nlohmann::json info = cm::ModelFile::from_bytes(mw.bytes(), "m").info();
+  edit(info);
+  mw.set_info(info);
   return mw;
 }
 
@@ -223,4 +258,79 @@ TEST(FlameModel, ReconstructsFromQuantisedImages) {
     // 8-bit eigen-images over [-1,1]: half a step is 1/255 per unit weight.
     EXPECT_NEAR(out[p], want, 0.1f) << p;
   }
+}
+
+// Issue 15: a model with a valid checksum that the players cannot play is
+// refused by the reader (so the element falls back to the built-in model)
+// instead of loading and then being dropped, or worse.
+TEST(FlameModel, RefusesWhatThePlayersCannotPlay) {
+  const auto load = [](const cm::ModelWriter& mw) {
+    return cm::FlameModel::from(cm::ModelFile::from_bytes(mw.bytes(), "m"));
+  };
+  // What they can play loads: an ARP of order 4 over 64 parameters.
+  const cm::FlameModel ok = load(with_flames(small_model(), 4, 30, 30, 3));
+  EXPECT_TRUE(ok.has_learning_flames);
+  EXPECT_EQ(ok.flames.dim, cm::kMaxArpDim);
+  std::string msg;
+  // Order 5..8 used to pass (the ARP takes at most 4).
+  EXPECT_EQ(error_of(with_flames(small_model(), 5).bytes(), &msg), Kind::kInconsistent);
+  EXPECT_NE(msg.find("learning_flames.order: expected an integer in [1, 4]"), std::string::npos)
+      << msg;
+  // 65 parameters (sizes up to 256 each used to pass; the ARP state holds 64).
+  EXPECT_EQ(error_of(with_flames(small_model(), 2, 30, 30, 4).bytes(), &msg), Kind::kInconsistent);
+  EXPECT_NE(msg.find("np + nw + 1 + ne = 65"), std::string::npos) << msg;
+  // Fewer training frames than the order.
+  EXPECT_EQ(error_of(with_flames(small_model(), 3, 4, 4, 2, 2).bytes(), &msg), Kind::kInconsistent);
+  EXPECT_NE(msg.find("learning_flames.frames"), std::string::npos) << msg;
+  // A clip at 100000 fps overflowed the Q16.16 frame rate.
+  EXPECT_EQ(
+      error_of(
+          edited(small_model(), [](nlohmann::json& i) { i["clips"][0]["fps"] = 100000.0; }).bytes(),
+          &msg),
+      Kind::kInconsistent);
+  EXPECT_NE(msg.find("clips[0].fps"), std::string::npos) << msg;
+  // Negative jump costs, and a frame with more jumps than the walker sums in Q16.16.
+  cm::ModelWriter neg = small_model();
+  std::vector<float> cost{1, 1, -2, 1, 1, 3};
+  neg.add_f32("graph.cost", {6}, cost);
+  EXPECT_EQ(error_of(neg.bytes(), &msg), Kind::kInconsistent);
+  EXPECT_NE(msg.find("graph.cost"), std::string::npos) << msg;
+  cm::ModelWriter wide = small_model();
+  const int n = cm::kMaxSuccessors + 1;
+  std::vector<int32_t> offsets{0, n, n + 1, n + 2, n + 3, n + 4},
+      succ(static_cast<size_t>(n) + 4, 2);
+  std::vector<float> costs(succ.size(), 1.0f);
+  wide.add_i32("graph.offsets", {6}, offsets);
+  wide.add_i32("graph.successors", {static_cast<int64_t>(succ.size())}, succ);
+  wide.add_f32("graph.cost", {static_cast<int64_t>(succ.size())}, costs);
+  EXPECT_EQ(error_of(wide.bytes(), &msg), Kind::kInconsistent);
+  EXPECT_NE(msg.find("1025 successors"), std::string::npos) << msg;
+}
+
+// Issue 15: special and huge files are refused by what they are, before any read.
+TEST(ModelFile, SpecialAndHugeFilesAreRefusedBeforeReading) {
+  const std::string fifo = temp_path("fifo.cmodel");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    cm::FlameModel::load(fifo);  // used to block in open() for ever
+    ADD_FAILURE() << "a FIFO loaded";
+  } catch (const cm::ModelError& e) {
+    EXPECT_EQ(e.kind(), Kind::kIo);
+    EXPECT_EQ(std::string(e.what()), fifo + ": not a regular file (a FIFO)");
+  }
+  std::remove(fifo.c_str());
+  // 4 GB (sparse): the reader used to allocate and read all of it before its 8-byte header.
+  const std::string big = temp_path("big.cmodel");
+  const int fd = ::open(big.c_str(), O_CREAT | O_WRONLY | O_TRUNC, 0600);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(ftruncate(fd, off_t{4} << 30), 0);
+  ::close(fd);
+  try {
+    cm::FlameModel::load(big);
+    ADD_FAILURE() << "a 4 GB model loaded";
+  } catch (const cm::ModelError& e) {
+    EXPECT_EQ(e.kind(), Kind::kIo);
+    EXPECT_EQ(std::string(e.what()), big + ": 4 GB, larger than the 256 MB limit for a model");
+  }
+  std::remove(big.c_str());
 }

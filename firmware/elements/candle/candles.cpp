@@ -160,6 +160,11 @@ class Candles final : public Element {
     for (auto& r : rigs_) r.update(step);
   }
   void draw(const FrameContext& frame, DrawPass pass) override;
+  int candles_lit() const override {
+    int n = 0;
+    for (const auto& r : rigs_) n += r.state().lit;
+    return n;
+  }
 
  private:
   void prepare(const FrameContext& frame);

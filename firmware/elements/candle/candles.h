@@ -37,6 +37,8 @@ struct CandleDesc {
 class CandlesSpec final : public ElementSpec {
  public:
   std::unique_ptr<Element> create(const SceneContext& context) const override;
+  // Scene budget (scene/element.h): one unit per 512 candles begun.
+  unsigned cost() const override { return 1 + static_cast<unsigned>(candles.size() / 512); }
   std::vector<CandleDesc> candles;
   FlameLook look;
 };

@@ -22,12 +22,9 @@
 #include <span>
 
 #include "core/random.h"
+#include "model/flame_model.h"
 
 namespace candela {
-namespace model {
-struct LearningFlamesModel;
-}
-
 struct ArpView {
   int dim = 0, order = 2;
   std::span<const float> A, d, B;   // K*D*D (A_k[i][j] at (k*D + i)*D + j), D, D*D
@@ -39,8 +36,9 @@ struct ArpView {
 
 class ArpProcess {
  public:
-  static constexpr int kMaxDim = 64;
-  static constexpr int kMaxOrder = 4;
+  // The model reader refuses more (model/flame_model.h), so every loaded model plays.
+  static constexpr int kMaxDim = model::kMaxArpDim;
+  static constexpr int kMaxOrder = model::kMaxArpOrder;
 
   // Starts from K consecutive training states picked by the seed.
   ArpProcess(const ArpView& view, uint64_t seed);

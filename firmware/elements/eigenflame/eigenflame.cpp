@@ -61,7 +61,9 @@ std::shared_ptr<EigenModel> derive(std::shared_ptr<const model::FlameModel> m, s
     const auto wt = m->weights_of(i);
     double s0 = m0[0], s1 = m1[0];
     for (int k = 0; k < e; ++k) s0 += wt[k] * m0[k + 1], s1 += wt[k] * m1[k + 1];
-    lean[static_cast<size_t>(i)] = s0 > 1e-9 ? s1 / s0 : 0.0;
+    // Within the image (+-0.5 widths) for a non-negative frame; a model whose
+    // reconstruction goes negative could give any ratio: keep it in Q16.16's reach.
+    lean[static_cast<size_t>(i)] = s0 > 1e-9 ? std::clamp(s1 / s0, -1.0, 1.0) : 0.0;
   }
   // The calm reference: frames labelled calm, else all frames.
   std::vector<double> calm;
@@ -272,7 +274,22 @@ std::shared_ptr<const EigenModel> default_eigen_model() {
 }
 
 std::unique_ptr<Element> EigenFlameSpec::create(const SceneContext& context) const {
-  return std::make_unique<EigenFlame>(settings, model, position, context.seed);
+  try {
+    return std::make_unique<EigenFlame>(settings, model, position, context.seed);
+  } catch (const std::exception& e) {
+    // A model the reader accepted but this GPU cannot hold (texture size, ...):
+    // play the built-in one rather than leave the flame out.
+    const auto fallback = default_eigen_model();
+    if (model == fallback) throw;
+    LOG_ERROR(
+        "%s: eigenflame: model %s cannot be played here (%s); using the built-in default model",
+        context.scene_file.c_str(), model->source.c_str(), e.what());
+    return std::make_unique<EigenFlame>(settings, fallback, position, context.seed);
+  }
+}
+
+std::string EigenFlameSpec::problem() const {
+  return model_error.empty() ? model_error : model_error + "; using the built-in default model";
 }
 
 std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
@@ -333,9 +350,7 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
     try {
       spec->model = load_eigen_model(path);
     } catch (const std::exception& e) {
-      spec->model_error = r.key_path("model") + ": " + e.what();
-      LOG_ERROR("%s: %s; using the built-in default model", r.file().c_str(),
-                spec->model_error.c_str());
+      spec->model_error = r.key_path("model") + ": " + e.what();  // logged by Scene, --check fails
     }
   }
   if (!spec->model) spec->model = default_eigen_model();

@@ -87,6 +87,8 @@ struct EigenFlameSettings {
 class EigenFlameSpec final : public ElementSpec {
  public:
   std::unique_ptr<Element> create(const SceneContext& context) const override;
+  std::string problem() const override;  // model_error: --check fails on it
+  unsigned cost() const override { return 4; }
   EigenFlameSettings settings;
   std::shared_ptr<const EigenModel> model;  // never null: the default if the named one failed
   std::string model_error;                  // why the named model was not used (empty: it was)

@@ -31,8 +31,12 @@ GraphWalker::GraphWalker(GraphView graph, std::span<const float> weights, int st
   std::sort(sorted.begin(), sorted.end());
   const float median = sorted.empty() ? 1.0f : std::max(1e-6f, sorted[sorted.size() / 2]);
   inv_cost_.resize(graph_.cost.size());
+  // At least one raw unit: a jump ~1e5x the median cost would round to 0, and a
+  // frame whose jumps all did would divide by a zero sum in step().
   for (size_t i = 0; i < graph_.cost.size(); ++i)
-    inv_cost_[i] = Fixed::from_double(1.0 / (1.0 + graph_.cost[i] / median));
+    inv_cost_[i] =
+        std::max(Fixed::from_raw(1),
+                 Fixed::from_double(1.0 / (1.0 + std::max(0.0f, graph_.cost[i]) / median)));
   // Lean bins.
   Fixed lo = Fixed::from_int(1000), hi = Fixed::from_int(-1000);
   for (Fixed l : lean_) lo = std::min(lo, l), hi = std::max(hi, l);
@@ -112,7 +116,7 @@ int32_t GraphWalker::step(Fixed target) {
     Fixed w;
     if (is_natural(from, to))
       w = jump_pref_sum.raw > 0 ? kOne - s_.jump_chance : kOne;
-    else
+    else  // jump_pref_sum >= inv_cost_[i] > 0 here (inv_cost_ is never 0)
       w = (has_natural ? s_.jump_chance : kOne) * inv_cost_[i] / jump_pref_sum;
     return w * lean_match(lean_[to], target, s_.lean_tolerance);
   };

@@ -66,7 +66,12 @@ Image make_default_fire_profile(int width, int height) {
 
 Image load_fire_profile(const std::string& path, const std::string& scene_file,
                         const std::string& key) {
-  Image img = read_png(path, 4);
+  Image img;
+  try {
+    img = read_png(path, 4);
+  } catch (const ConfigError& e) {  // name the scene and key too, as every scene error does
+    throw ConfigError(scene_file, key, std::string("expected a profile PNG: ") + e.what());
+  }
   if (img.width < 4 || img.height < 4)
     throw ConfigError(scene_file, key,
                       "expected a profile PNG of at least 4x4 pixels, got '" + path + "' (" +

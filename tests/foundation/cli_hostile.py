@@ -1,0 +1,219 @@
+#!/usr/bin/python3
+"""Issue 15: `candela` against hostile input, as a user or a broken kiosk
+would feed it: special files, deep or huge scenes, degenerate scenes, bad
+command-line numbers, and signals while it writes video.
+
+    cli_hostile.py CASE BUILD_DIR
+
+Each case checks the exit status and the message a user would read. Every
+wait polls observable state (a file, a process's exit) against a deadline;
+nothing sleeps to synchronise."""
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+CASE, BUILD = sys.argv[1], os.path.abspath(sys.argv[2])
+CANDELA = os.path.join(BUILD, "firmware", "candela")
+WORK = tempfile.mkdtemp(prefix="candela-hostile-")
+FAILED = []
+ELEMENT = '[[element]]\nkind = "test_pattern"\n'
+
+
+def check(cond, what, detail=""):
+    print(("ok   " if cond else "FAIL ") + what + ("" if cond else detail), flush=True)
+    if not cond:
+        FAILED.append(what)
+    return cond
+
+
+def wait_for(what, fn, timeout=30.0, interval=0.02):
+    deadline = time.monotonic() + timeout
+    while True:
+        v = fn()
+        if v:
+            return v
+        if time.monotonic() > deadline:
+            raise AssertionError("timed out after %.0f s waiting for %s" % (timeout, what))
+        time.sleep(interval)  # polling interval, bounded by the deadline
+
+
+def write(name, text):
+    path = os.path.join(WORK, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def run(*args, timeout=30):
+    """Runs candela; a hang is a failure (TimeoutExpired), not a stuck test."""
+    p = subprocess.run([CANDELA, *args], capture_output=True, text=True, timeout=timeout)
+    return p.returncode, p.stdout + p.stderr
+
+
+def expect(args, rc, *says):
+    got_rc, out = run(*args)
+    check(got_rc == rc, "%s: exit %d (got %d)" % (" ".join(args)[:80], rc, got_rc))
+    for s in says:
+        check(s in out, "says %r" % s, "\n---\n%s---" % out[-1500:])
+    return out
+
+
+def check_scene(text, rc, *says, name="scene.toml"):
+    return expect(["--check", "--scene", write(name, text)], rc, *says)
+
+
+# --- special files (finding 3, 12) -----------------------------------------
+
+def case_special_files():
+    fifo = os.path.join(WORK, "fifo")
+    os.mkfifo(fifo)
+    expect(["--check", "--scene", fifo], 2, "fifo: not a regular file (a FIFO)")
+    expect(["--check", "--scene", "/dev/zero"], 2, "/dev/zero: not a regular file (a character device)")
+    expect(["--check", "--scene", WORK], 2, "not a regular file (a directory)")
+    loop_a, loop_b = os.path.join(WORK, "a.toml"), os.path.join(WORK, "b.toml")
+    os.symlink(loop_b, loop_a)
+    os.symlink(loop_a, loop_b)
+    expect(["--check", "--scene", loop_a], 2, "a.toml: cannot open: Too many levels of symbolic links")
+    # Every file a scene names: gust table, noise tables, model, still, profile.
+    for key, table in [("gust_table", "[wind]\ngust_table = \"fifo\"\n" + ELEMENT),
+                       ("model", '[[element]]\nkind = "eigenflame"\nmodel = "fifo"\n'),
+                       ("still", '[[element]]\nkind = "candles"\nstill = "fifo"\n[[element.candle]]\n'),
+                       ("profile", '[[element]]\nkind = "perlinfire"\nprofile = "fifo"\n'),
+                       ("calm.sway_table", '[[element]]\nkind = "candles"\n[element.calm]\n'
+                                           'sway_table = "fifo"\n[[element.candle]]\n')]:
+        check_scene(table, 2, key, "not a regular file (a FIFO)")
+    # A broken profile PNG names the scene and key too (it named only the PNG).
+    write("bad.png", "not a png")
+    check_scene('[[element]]\nkind = "perlinfire"\nprofile = "bad.png"\n', 2,
+                "scene.toml: element[0].profile: expected a profile PNG:", "bad.png: expected a PNG file")
+
+
+def case_scene_bounds():
+    # ~50,000 levels of dotted key used to overflow toml++'s stack (SIGSEGV).
+    deep = "a" + ".a" * 50000 + " = 1\n"
+    check_scene(deep, 2, "scene.toml: line 1: a dotted key or table header nests too deep")
+    check_scene(ELEMENT + "\n[" + ".".join(["a"] * 50000) + "]\n", 2, "line 4:", "nests too deep")
+    check_scene("[[" + ".".join(["a"] * 50000) + "]]\n", 2, "line 1:", "nests too deep")
+    check_scene("x = " + "[" * 50000 + "]" * 50000 + "\n", 2, "line 1:", "nest too deep")
+    # Dots inside strings and comments are not nesting.
+    check_scene('name = "' + "." * 5000 + '"  # ' + "." * 100 + "\n" + ELEMENT, 2, "name: unknown key")
+    # Size: a 2 MB scene is refused before it is parsed.
+    check_scene("# " + "x" * (2 << 20) + "\n" + ELEMENT, 2, "2 MB, larger than the 1 MB limit for a scene")
+    # Elements: 100,000 of them used to drive the machine into the OOM killer.
+    check_scene(ELEMENT * 65, 2, "element: expected at most 64 [[element]] tables, got 65")
+    check_scene('[[element]]\nkind = "eigenflame"\n' * 17, 2, "element[16]: the scene's elements would cost more")
+    check_scene('[[element]]\nkind = "eigenflame"\n' * 16, 0, "OK (16 elements)")
+    grid = '[[element]]\nkind = "candles"\n[element.grid]\ncount = 4096\n'
+    check_scene(grid * 3, 0, "OK (3 elements)")  # 9 units each
+    check_scene(grid * 8, 2, "element[7]: the scene's elements would cost more")
+
+
+def case_check_degenerate():
+    # An empty scene would be a black kiosk (finding 11).
+    check_scene("seed = 3\n", 2, "scene.toml: element: the scene has no [[element]]")
+    check_scene("[camera]\nposition = [0, 1, 2]\ntarget = [0, 1, 2]\n" + ELEMENT, 2,
+                "camera.target: expected a point away from camera.position")
+    check_scene("[camera]\nposition = [0, 3, 0]\ntarget = [0, 0, 0]\n" + ELEMENT, 2,
+                "camera.target: expected the camera to look less than 89 degrees down")
+    check_scene("[display]\nwidth = 100\n" + ELEMENT, 2, "display.height: missing: give both width and height")
+    check_scene("[display]\nwidth = 1\nheight = 1\n" + ELEMENT, 2, "display.width: expected at least 16 pixels")
+    # A wind direction beyond Q16.16 is only a direction: accepted, and the scene runs.
+    check_scene("[wind]\ndirection = [40000, 0, 0]\nspeed = 1\n" + ELEMENT, 0, "OK (1 elements)")
+    # Integers above 2^53 in a float key used to read as 0 (finding 7).
+    check_scene("[wind]\nspeed = 9007199254740993\n" + ELEMENT, 2,
+                "wind.speed: expected a number in [0, 30], got 9007199254740993")
+    # A 10 MB bad value is not echoed whole (finding 12).
+    out = check_scene('[background]\ncolor = "' + "x" * (700 << 10) + '"\n' + ELEMENT, 2,
+                      "background.color: expected a colour")
+    check(len(out) < 1000, "the message is short (%d characters)" % len(out))
+    # A model the runtime would replace with the built-in one fails --check (finding 4).
+    model = os.path.join(WORK, "broken.cmodel")
+    with open(model, "wb") as f:
+        f.write(b"\x10\x00\x00\x00\x00\x00\x00\x00{}")
+    check_scene('[[element]]\nkind = "eigenflame"\nmodel = "broken.cmodel"\n', 2,
+                "element[0].model:", "broken.cmodel", "using the built-in default model")
+
+
+def case_cli_numbers():
+    expect(["--frames", "-1", "--check"], 2, "--frames: expected a whole number of frames")
+    expect(["--frames", "1e11", "--check"], 2, "--frames: expected a whole number of frames")
+    expect(["--frames", "99999999999999999999999", "--check"], 2, "--frames: expected")
+    expect(["--size", "4294967312x64", "--check"], 2, "--size: expected WxH")
+    expect(["--size", "1x1", "--check"], 2, "--size: expected WxH")
+    expect(["--seed", "-1", "--check"], 2, "--seed: expected a whole number from 1 to 2^63-1")
+    expect(["--seed", "0x10", "--check"], 2, "--seed: expected")
+    expect(["--seed", "42", "--frames", "3", "--check"], 0, "OK")
+
+
+# --- signals and broken pipes (finding 8) ---------------------------------
+
+def start(out, new_session=False):
+    log = open(os.path.join(WORK, "candela.log"), "w")
+    return subprocess.Popen([CANDELA, "--display", "headless", "--test-pattern", "--size", "64x48",
+                             "--out", out, "--log-level", "info"],
+                            stdout=log, stderr=subprocess.STDOUT, start_new_session=new_session)
+
+
+def finish(proc, what):
+    rc = proc.wait(timeout=60)
+    with open(os.path.join(WORK, "candela.log")) as f:
+        log = f.read()
+    check(rc == 0, "%s: exit 0 after the signal (got %d)" % (what, rc), "\n" + log[-1000:])
+    check("outputs finished" in log, "%s: says it stopped cleanly" % what)
+
+
+def case_signal_y4m():
+    out = os.path.join(WORK, "x.y4m")
+    p = start(out)
+    header = len("YUV4MPEG2 W64 H48 F60:1 Ip A1:1 C444 XCOLORRANGE=FULL\n")
+    frame = len("FRAME\n") + 64 * 48 * 3
+    wait_for("frames in the y4m", lambda: os.path.exists(out) and os.path.getsize(out) > header + 5 * frame)
+    p.send_signal(signal.SIGHUP)  # candela alone: used to leave a partial last frame
+    finish(p, "y4m")
+    size = os.path.getsize(out)
+    check((size - header) % frame == 0, "the y4m holds whole frames only (%d bytes)" % size)
+
+
+def case_signal_png():
+    out = os.path.join(WORK, "frames")
+    p = start(out)
+    wait_for("PNG frames", lambda: os.path.exists(os.path.join(out, "frame_000005.png")))
+    p.send_signal(signal.SIGHUP)  # used to leave a .tmp behind
+    finish(p, "png")
+    names = os.listdir(out)
+    check(not [n for n in names if n.endswith(".tmp")], "no .tmp left over")
+    for n in names:
+        with open(os.path.join(out, n), "rb") as f:
+            b = f.read()
+        check(b[:8] == b"\x89PNG\r\n\x1a\n" and b[-8:-4] == b"IEND", "%s is a whole PNG" % n)
+
+
+def case_signal_mp4():
+    out = os.path.join(WORK, "x.mp4")
+    p = start(out, new_session=True)
+    wait_for("ffmpeg to start the mp4", lambda: os.path.exists(out) and os.path.getsize(out) > 0)
+    os.killpg(p.pid, signal.SIGINT)  # Ctrl-C reaches the whole group (ffmpeg too, before)
+    finish(p, "mp4")
+    with open(out, "rb") as f:
+        b = f.read()
+    check(b"moov" in b, "the mp4 has its index (moov), %d bytes" % len(b))
+
+
+def case_sigpipe():
+    rc, out = run("--display", "headless", "--test-pattern", "--size", "64x48", "--frames", "120",
+                  "--out", "/nonexistent/dir/x.mp4", timeout=60)
+    check(rc == 1, "exit 1 (got %d; 141 was SIGPIPE)" % rc)
+    check("x.mp4: ffmpeg" in out, "says ffmpeg could not take the frames", "\n" + out[-800:])
+
+
+CASES = {k[5:]: v for k, v in globals().items() if k.startswith("case_")}
+try:
+    CASES[CASE]()
+except (AssertionError, subprocess.TimeoutExpired) as e:
+    check(False, str(e))
+finally:
+    subprocess.run(["rm", "-rf", WORK])
+sys.exit(1 if FAILED else 0)
