@@ -11,27 +11,27 @@
 # Configure Candela with -DCMAKE_PREFIX_PATH=that path (or PKG_CONFIG_PATH=
 # path/lib/pkgconfig); the binaries find libgpiod.so.3 there by RUNPATH.
 #
-# The version is whatever trixie carries today (read from its Sources index,
-# never hard-coded). Everything downloaded is verified before use:
-#   InRelease  -- OpenPGP signatures, gpgv against debian-archive-keyring
-#                 (bookworm's keyring already holds the trixie keys): one
-#                 good signature and no bad one, as apt requires;
-#   Sources.xz -- sha256 and size from the verified Release text;
-#   .orig.tar  -- sha256 and size from the verified Sources entry.
+# The version is whatever trixie carries today (never hard-coded). The source
+# comes through apt itself: `apt-get source --print-uris` with a private
+# apt state (CACHE_DIR/apt) whose only source is trixie's deb-src on the same
+# Debian archive this machine's apt already uses (read from `apt-cache
+# policy`; no archive host is named here). apt verifies everything as it does
+# for any install: the InRelease signatures against debian-archive-keyring
+# (bookworm's keyring already holds the trixie keys) and the Sources index
+# against the signed Release; apt's own downloader (apt-helper) fetches the
+# upstream tarball and checks it against the sha256 in that index.
 # Debian's own patches (debian.tar.xz) only touch the documentation today, so
 # the upstream .orig tarball is built as it is.
 #
-# Idempotent: the index is fetched again only when its checksum changed, and
-# the library is rebuilt only when the tarball did. Without network it fails
-# (exit 1, saying so), unless a verified build is already there, which it then
-# reuses with a warning. Needs: curl gpgv debian-archive-keyring xz-utils
-# build-essential (board/install-deps.sh).
+# Idempotent: the library is rebuilt only when trixie's tarball changed.
+# Without network it fails (exit 1, saying so), unless a verified build is
+# already there, which it then reuses with a warning. Needs: apt, gpgv,
+# debian-archive-keyring, xz-utils, build-essential (board/install-deps.sh).
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=$(cd "$here/../.." && pwd)
 cache=$(mkdir -p "${1:-$repo/build-gpiod2}" && cd "${1:-$repo/build-gpiod2}" && pwd)
-mirror=${CANDELA_DEBIAN_MIRROR:-http://deb.debian.org/debian}
 suite=trixie
 package=libgpiod
 keyring=${CANDELA_DEBIAN_KEYRING:-/usr/share/keyrings/debian-archive-keyring.gpg}
@@ -44,7 +44,7 @@ die() {
   echo "libgpiod2: error: $*" >&2
   exit 1
 }
-for tool in curl gpgv xz sha256sum make cc; do
+for tool in apt-get apt-cache gpgv xz sha256sum make cc; do
   command -v "$tool" >/dev/null || die "'$tool' is missing: run board/install-deps.sh"
 done
 [ -r "$keyring" ] || die "$keyring is missing: apt-get install debian-archive-keyring"
@@ -53,9 +53,6 @@ mkdir -p "$dl"
 exec 9>"$cache/.libgpiod2.lock"
 flock 9 # concurrent runs wait for one another
 
-fetch() { # URL FILE
-  curl -sSf --retry 3 --connect-timeout 15 -o "$2.part" "$1" && mv "$2.part" "$2"
-}
 reuse_or_die() {
   if [ -f "$stamp" ]; then
     say "WARNING: $1; reusing the verified build in $prefix ($(cat "$stamp"))"
@@ -65,49 +62,33 @@ reuse_or_die() {
   die "$1"
 }
 
-# --- 1. the signed Release text -------------------------------------------------
-fetch "$mirror/dists/$suite/InRelease" "$dl/InRelease" ||
-  reuse_or_die "cannot download $mirror/dists/$suite/InRelease (no network?)"
-# As apt does: at least one good signature by a key in the keyring and no bad
-# one. (InRelease carries several; gpgv exits non-zero when any key is unknown,
-# e.g. a newer release key than this keyring has, so its status lines decide.)
-rm -f "$dl/Release.verified"
-gpgv --status-fd 3 --keyring "$keyring" --output "$dl/Release.verified" "$dl/InRelease" \
-  3>"$dl/gpgv.status" 2>"$dl/gpgv.log" || true
-if ! grep -q '^\[GNUPG:\] VALIDSIG ' "$dl/gpgv.status" ||
-  grep -qE '^\[GNUPG:\] (BADSIG|EXPKEYSIG|REVKEYSIG) ' "$dl/gpgv.status" ||
-  [ ! -s "$dl/Release.verified" ]; then
-  rm -f "$dl/Release.verified"
-  die "the signature of $suite's InRelease does not verify against $keyring:
-$(cat "$dl/gpgv.log")"
-fi
-# Only the verified text is read from here on, never InRelease itself.
+# --- 1. which Debian archive this machine uses ------------------------------------
+# The URI of the release's main component, as apt reports it (origin Debian, not
+# the security archive).
+archive=$(apt-cache policy 2>/dev/null | awk '
+  / [0-9]+ [a-z]+:\/\// {uri = $2}
+  /release .*o=Debian,/ && /,c=main,/ && !/l=Debian-Security/ && uri != "" {print uri; exit}')
+[ -n "$archive" ] || die "apt knows no Debian archive (apt-cache policy lists none): run apt-get update"
 
-# --- 2. the source index ----------------------------------------------------------
-# The SHA256 section of Release: " <sha256> <size> main/source/Sources.xz".
-read -r idx_sha idx_size < <(awk '/^SHA256:/{s=1; next} /^[^ ]/{s=0}
-  s && $3 == "main/source/Sources.xz" {print $1, $2}' "$dl/Release.verified") || true
-[ -n "${idx_sha:-}" ] || die "$suite's Release lists no sha256 for main/source/Sources.xz"
-if ! echo "$idx_sha  $dl/Sources.xz" | sha256sum -c --status 2>/dev/null; then
-  fetch "$mirror/dists/$suite/main/source/Sources.xz" "$dl/Sources.xz" ||
-    reuse_or_die "cannot download $suite's main/source/Sources.xz"
-  echo "$idx_sha  $dl/Sources.xz" | sha256sum -c --status ||
-    die "main/source/Sources.xz does not match the sha256 in $suite's signed Release"
-fi
-[ "$(stat -c %s "$dl/Sources.xz")" = "$idx_size" ] || die "main/source/Sources.xz has the wrong size"
+# --- 2. a private apt state with trixie's sources only ----------------------------
+state=$cache/apt
+mkdir -p "$state/lists/partial" "$state/archives/partial" "$state/etc"
+printf 'Types: deb-src\nURIs: %s\nSuites: %s\nComponents: main\nSigned-By: %s\n' \
+  "$archive" "$suite" "$keyring" >"$state/etc/trixie.sources"
+apt_private=(-o "Dir::Etc::SourceList=/dev/null" -o "Dir::Etc::SourceParts=$state/etc"
+  -o "Dir::State::Lists=$state/lists" -o "Dir::Cache=$state" -o "Dir::State::Status=/dev/null"
+  -o "APT::Sandbox::User=root" -o "Debug::NoLocking=1" -qq)
+apt-get "${apt_private[@]}" update >"$state/update.log" 2>&1 ||
+  reuse_or_die "apt-get update of $suite's sources failed (no network?):
+$(cat "$state/update.log")"
 
-# --- 3. the package's entry: version, folder, upstream tarball ------------------
-# (awk reads to the end: stopping early would kill xz with SIGPIPE under pipefail)
-entry=$(xz -dc "$dl/Sources.xz" | awk -v p="$package" 'BEGIN {RS = ""}
-  !found && $0 ~ "^Package: " p "\n" {print; found = 1}')
+# --- 3. the package: version and upstream tarball, verified by apt -----------------
+entry=$(apt-cache "${apt_private[@]}" showsrc "$package" 2>/dev/null | awk 'BEGIN {RS = ""} NR == 1')
 [ -n "$entry" ] || die "$suite has no source package '$package'"
 version=$(sed -n 's/^Version: //p' <<<"$entry")
-directory=$(sed -n 's/^Directory: //p' <<<"$entry")
-# The Checksums-Sha256 line of the upstream tarball: " <sha256> <size> <name>.orig.tar.<ext>".
 read -r tar_sha tar_size tar_name < <(awk '/^Checksums-Sha256:/{s=1; next} /^[^ ]/{s=0}
   s && $3 ~ /\.orig\.tar\.(xz|gz|bz2)$/ {print $1, $2, $3}' <<<"$entry") || true
-{ [ -n "${tar_sha:-}" ] && [ -n "$directory" ]; } ||
-  die "$suite's entry for $package has no .orig tarball with a sha256:
+[ -n "${tar_sha:-}" ] || die "$suite's entry for $package has no .orig tarball with a sha256:
 $entry"
 say "$suite has $package $version ($tar_name)"
 
@@ -118,7 +99,15 @@ if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$tar_sha $tar_name" ]; then
   exit 0
 fi
 if ! echo "$tar_sha  $dl/$tar_name" | sha256sum -c --status 2>/dev/null; then
-  fetch "$mirror/$directory/$tar_name" "$dl/$tar_name" || reuse_or_die "cannot download $tar_name"
+  # Only the upstream tarball is needed: apt names its URI (on the archive above)
+  # and its own downloader fetches it, checking the sha256 from the signed index.
+  uri=$(apt-get "${apt_private[@]}" source --print-uris "$package=$version" 2>"$state/source.log" |
+    awk -v n="$tar_name" '$2 == n {gsub(/\047/, "", $1); print $1}')
+  [ -n "$uri" ] || reuse_or_die "apt names no URI for $tar_name:
+$(cat "$state/source.log")"
+  /usr/lib/apt/apt-helper -o "APT::Sandbox::User=root" download-file "$uri" "$dl/$tar_name" \
+    "SHA256:$tar_sha" >"$state/download.log" 2>&1 || reuse_or_die "cannot download $tar_name:
+$(cat "$state/download.log")"
   echo "$tar_sha  $dl/$tar_name" | sha256sum -c --status ||
     die "$tar_name does not match the sha256 in $suite's signed Sources"
 fi
