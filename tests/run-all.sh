@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
 
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCANDELA_WERROR=ON
 cmake --build build -j "$jobs"
 ctest --test-dir build --output-on-failure -j "$jobs" -LE board
 # The virtual-board tests time real kernel events under emulation: run them
@@ -22,7 +22,7 @@ ctest --test-dir build --output-on-failure -L board
 # from build/'s candela-tool and the VM from build/vboard: nothing else rebuilt.
 gpiod2_prefix=$(board/libgpiod2/build.sh build-gpiod2) ||
   { echo "run-all: error: could not build Debian 13's libgpiod (see above)" >&2; exit 1; }
-cmake -S . -B build-gpiod2 -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCANDELA_BUILD_BENCH=OFF \
+cmake -S . -B build-gpiod2 -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCANDELA_WERROR=ON -DCANDELA_BUILD_BENCH=OFF \
   -DCMAKE_PREFIX_PATH="$gpiod2_prefix" -DCANDELA_NOISE_TOOL="$PWD/build/tools/candela-tool/candela-tool"
 grep -qx 'CANDELA_GPIO_API:INTERNAL=2' build-gpiod2/CMakeCache.txt ||
   { echo "run-all: error: build-gpiod2 did not pick libgpiod 2 (gpio_line_v2.cpp)" >&2; exit 1; }
@@ -32,7 +32,7 @@ CANDELA_VBOARD_CACHE=${CANDELA_VBOARD_CACHE:-$PWD/build/vboard} ctest --test-dir
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCANDELA_SANITIZE=ON -DCANDELA_BUILD_BENCH=OFF
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCANDELA_WERROR=ON -DCANDELA_SANITIZE=ON -DCANDELA_BUILD_BENCH=OFF
 cmake --build build-asan -j "$jobs"
 ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE board
 

@@ -156,9 +156,11 @@ const drmModeModeInfo* pick_mode(const drmModeConnector& conn, const DisplayOpti
       best = &m;
   }
   if (best) return best;
+  // Appended, not "@" + string: GCC 12's -Wrestrict misfires on that at -O3.
+  std::string rate;
+  if (o.refresh_hz > 0) rate.append("@").append(std::to_string(o.refresh_hz));
   LOG_WARN("drm: %s has no mode %dx%d%s; using its preferred mode %s", name.c_str(), want_w, want_h,
-           o.refresh_hz > 0 ? ("@" + std::to_string(o.refresh_hz)).c_str() : "",
-           describe_mode(*preferred).c_str());
+           rate.c_str(), describe_mode(*preferred).c_str());
   return preferred;
 }
 

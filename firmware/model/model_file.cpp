@@ -300,8 +300,10 @@ const Tensor& ModelFile::require(std::string_view name, DType dtype,
   }
   if (!ok) {
     std::string s = "[";
-    for (int64_t want : shape)
-      s += (s.size() > 1 ? "," : "") + (want < 0 ? std::string("*") : std::to_string(want));
+    for (int64_t want : shape) {  // appended piecewise: GCC 12's -Wrestrict misfires on "," + string
+      if (s.size() > 1) s += ',';
+      s += want < 0 ? std::string("*") : std::to_string(want);
+    }
     fail(field, "expected shape " + s + "]");
   }
   return *t;

@@ -13,7 +13,7 @@ budget=${1:-30}
 # needed by the fuzz targets, but the project's configure names one).
 tool=${CANDELA_NOISE_TOOL:-$PWD/build/tools/candela-tool/candela-tool}
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
-  -DCMAKE_CXX_COMPILER=clang++ -DCANDELA_BUILD_BENCH=OFF -DCANDELA_NOISE_TOOL="$tool" >/dev/null
+  -DCMAKE_CXX_COMPILER=clang++ -DCANDELA_WERROR=ON -DCANDELA_BUILD_BENCH=OFF -DCANDELA_NOISE_TOOL="$tool" >/dev/null
 cmake --build build-fuzz --target model_reader_fuzz scene_reader_fuzz
 status=0
 for target in model_reader scene_reader; do

@@ -158,7 +158,7 @@ class EigenFlame final : public Element {
                                                   look, player_->weights());
     }
     if (s.embers.enabled) {
-      embers_ = Program::from_library("eigenflame_embers.vert", "eigenflame_embers.frag");
+      embers_ = Program::from_library("floor_quad.vert", "eigenflame_embers.frag");
       embers_vao_ = make_vertex_array();
       ue_ = {embers_.uniform("u_view_projection"),
              embers_.uniform("u_centre"),

@@ -105,7 +105,7 @@ class Hearth final : public Element {
   Hearth(const HearthSettings& s, Vec3 position, uint64_t seed)
       : s_(s), position_(position), light_(seed), seed_(static_cast<float>(seed % 1000) * 0.37f) {
     logs_prog_ = Program::from_library("hearth_log.vert", "hearth_log.frag");
-    bed_prog_ = Program::from_library("hearth_bed.vert", "hearth_bed.frag");
+    bed_prog_ = Program::from_library("floor_quad.vert", "hearth_bed.frag");
     const auto u = [&](const Program& p, const char* n) { return p.uniform(n); };
     ul_ = {
         u(logs_prog_, "u_view_projection"), u(logs_prog_, "u_camera"), u(logs_prog_, "u_light_pos"),

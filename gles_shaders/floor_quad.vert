@@ -1,5 +1,5 @@
 #version 300 es
-// The ember bed: a flat quad on the ground (gl_VertexID 0..3, a strip).
+// A flat quad on the floor (gl_VertexID 0..3, a strip): the eigen-flames' and the hearth's ember beds.
 precision highp float;
 uniform mat4 u_view_projection;
 uniform vec3 u_centre;
