@@ -285,6 +285,15 @@ TEST(FluidSolver, CombustionBurnsAtTheStatedRateAndConservesEnergy) {
   EXPECT_NEAR(s.temperature().at(3, 5), 900.0 + 250.0 * (1.0 - left), 1e-6);
   EXPECT_EQ(s.fuel().at(12, 5), 1.0) << "below ignition nothing burns";
   EXPECT_EQ(s.temperature().at(12, 5), 400.0);
+
+  // No cell burns hotter than the flame temperature.
+  p.flame_temperature = 1000.0;
+  FluidSolver c(p);
+  c.temperature().fill(900.0);
+  c.fuel().fill(1.0);
+  for (int k = 0; k < 30; ++k) c.step(dt);
+  EXPECT_DOUBLE_EQ(c.temperature().max_abs(), 1000.0);
+  EXPECT_NEAR(c.fuel().at(3, 5), left, 1e-9) << "the fuel still burns at the stated rate";
 }
 
 // A log with turbulent injection feeds fuel in patches along its length (the
@@ -355,6 +364,13 @@ TEST(Radiance, CrispEdgeAndClippedCore) {
   for (int x = 0; x < 200; ++x) white += r.row(0)[x] >= 243;
   EXPECT_GT(white, 10);
   for (int x = 1; x < 200; ++x) ASSERT_GE(r.row(0)[x], r.row(0)[x - 1]) << "monotone in T";
+  // Soot: hot gas without fuel is clear (invisible); with fuel it glows.
+  Grid2 hot(2, 1, 1800.0), fuel(2, 1, 0.0);
+  fuel.at(1, 0) = 50.0;
+  cam.soot = 10.0;
+  const Image s = render_radiance(hot, amb, tref, ColourMode::kGray, cam, 1, &fuel);
+  EXPECT_EQ(s.row(0)[0], 0);
+  EXPECT_GT(s.row(0)[1], 240);
   // Soft clip: continuous at the knee, below 1 always.
   EXPECT_NEAR(soft_clip(0.7 - 1e-9, 0.7), soft_clip(0.7 + 1e-9, 0.7), 1e-6);
   EXPECT_LT(soft_clip(3.0, 0.7), 1.0);

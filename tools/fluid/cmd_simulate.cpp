@@ -53,6 +53,8 @@ int run_simulate(int argc, char** argv) {
   auto* o_ign = app.add_option("--ignition", base.ignition, "fuel burns above this, K");
   auto* o_heat =
       app.add_option("--heat-release", base.heat_release, "heating per unit of fuel burnt, K");
+  auto* o_flame = app.add_option("--flame-temperature", base.flame_temperature,
+                                 "burning heats no cell above this, K");
   app.add_option("--source", sources,
                  "heat source (repeatable): x=,y=,rx=,ry= (fractions of the grid, y from the "
                  "bottom), angle= (deg), rate= (K/s), temp= (K), flicker= (0..1), hz=, fuel= "
@@ -76,6 +78,10 @@ int run_simulate(int argc, char** argv) {
                  "radiance: brightness of T_reference before the soft clip")
       ->capture_default_str();
   app.add_option("--knee", camera.knee, "radiance: where the soft clip starts, 0..1")
+      ->capture_default_str();
+  app.add_option("--soot", camera.soot,
+                 "radiance: gas glows by 1 - exp(-fuel / SOOT) (soot where fuel burns); 0 = all "
+                 "hot gas glows")
       ->capture_default_str();
   app.add_option("--scale", scale, "image pixels per cell (1..16)")->capture_default_str();
   app.add_option(
@@ -101,6 +107,7 @@ int run_simulate(int argc, char** argv) {
     if (o_burn->count()) opt.params.burn_rate = base.burn_rate;
     if (o_ign->count()) opt.params.ignition = base.ignition;
     if (o_heat->count()) opt.params.heat_release = base.heat_release;
+    if (o_flame->count()) opt.params.flame_temperature = base.flame_temperature;
     if (advection == "maccormack")
       opt.params.advection = Advection::kMacCormack;
     else if (advection == "semi-lagrangian")
@@ -153,11 +160,11 @@ int run_simulate(int argc, char** argv) {
     const SimulateSummary s = run_simulation(opt, progress);
     if (!quiet)
       std::fprintf(stderr,
-                   "simulate: %d frames (%d steps of %dx%d) in %.2f s -> %s\n"
+                   "simulate: %d frames (%d steps of %dx%d) in %.2f s -> %s (T_reference %.0f K)\n"
                    "simulate: pressure: at most %d CG iterations/step, max|div u|*cell <= %.2g x "
                    "max|u|%s\n",
                    frames, s.steps, opt.params.width, opt.params.height, s.seconds, out.c_str(),
-                   s.max_pressure_iterations, s.max_relative_residual,
+                   s.t_reference, s.max_pressure_iterations, s.max_relative_residual,
                    s.unconverged_steps ? " (some steps hit the iteration limit)" : "");
     return 0;
   } catch (const std::invalid_argument& e) {

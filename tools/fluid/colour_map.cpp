@@ -53,7 +53,8 @@ double soft_clip(double x, double knee) {
 }
 
 Image render_radiance(const Grid2& t, double t_ambient, double t_reference, ColourMode mode,
-                      const Camera& cam, int scale) {
+                      const Camera& cam, int scale, const Grid2* fuel) {
+  const bool soot = fuel && cam.soot > 0.0 && fuel->width == t.width && fuel->height == t.height;
   Image img;
   img.width = t.width * scale;
   img.height = t.height * scale;
@@ -81,7 +82,8 @@ Image render_radiance(const Grid2& t, double t_ambient, double t_reference, Colo
       const double f = std::clamp((t.sample(gx, gy) - lo) / step, 0.0, lum.size() - 1.001);
       const auto k = static_cast<size_t>(f);
       const double a = f - k;
-      const double e = cam.exposure * (lum[k] + (lum[k + 1] - lum[k]) * a);
+      double e = cam.exposure * (lum[k] + (lum[k + 1] - lum[k]) * a);
+      if (soot) e *= 1.0 - std::exp(-std::max(0.0, fuel->sample(gx, gy)) / cam.soot);
       if (mode == ColourMode::kGray) {
         row[x] = encode_srgb(soft_clip(e, cam.knee));
       } else {

@@ -69,6 +69,8 @@ void validate(const FluidParams& p) {
   if (!finite(p.burn_rate) || p.burn_rate < 0.0 || p.burn_rate > 1e4)
     bad("burn-rate", "a rate in 0..10000 per second");
   if (!finite(p.ignition) || p.ignition < 0.0) bad("ignition", "a temperature >= 0 K");
+  if (!finite(p.flame_temperature) || p.flame_temperature <= p.t_ambient)
+    bad("flame-temperature", "a temperature above the ambient temperature");
   if (!finite(p.heat_release) || p.heat_release < 0.0 || p.heat_release > 1e5)
     bad("heat-release", "kelvin per unit of fuel in 0..100000");
   for (size_t k = 0; k < p.sources.size(); ++k) {
@@ -261,7 +263,8 @@ void FluidSolver::advect(double dt) {
 
 // Fuel above the ignition temperature burns at burn_rate: over a step a share
 // 1 - exp(-burn_rate dt) of it goes, and each unit burnt heats the cell by
-// heat_release kelvin. Fuel + heat / heat_release is conserved.
+// heat_release kelvin, up to flame_temperature. Below that, fuel x
+// heat_release + T is conserved.
 void FluidSolver::burn(double dt) {
   if (params_.burn_rate <= 0.0) return;
   const double share = 1.0 - std::exp(-params_.burn_rate * dt);
@@ -270,7 +273,8 @@ void FluidSolver::burn(double dt) {
     if (f <= 0.0 || t_.data[k] <= params_.ignition) continue;
     const double b = f * share;
     f -= b;
-    t_.data[k] += params_.heat_release * b;
+    double& t = t_.data[k];
+    t = std::max(t, std::min(t + params_.heat_release * b, params_.flame_temperature));
   }
 }
 

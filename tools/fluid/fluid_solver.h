@@ -66,10 +66,13 @@ struct FluidParams {
   Advection advection = Advection::kSemiLagrangian;
   // Combustion: fuel above `ignition` burns at `burn_rate` (fraction per
   // second, exact exponential decay over a step), each unit releasing
-  // `heat_release` kelvin into its cell.
+  // `heat_release` kelvin into its cell, up to `flame_temperature`.
   double burn_rate = 8.0;       // 1/s
   double ignition = 600.0;      // K
   double heat_release = 400.0;  // K per unit of fuel
+  // Burning heats no cell above this (the adiabatic flame temperature: the
+  // products of fuel and air can get no hotter), K.
+  double flame_temperature = 2000.0;
   std::vector<HeatSource> sources;
   std::vector<WindKey> wind;         // empty = still air
   double wind_drag = 2.0;            // 1/s

@@ -83,7 +83,7 @@ FluidParams preset_params(const std::string& name) {
       s.rx = l.rx;
       s.ry = l.ry;
       s.angle = l.angle;
-      s.rate = 6000.0;
+      s.rate = 7000.0;
       s.temperature = 1300.0;
       s.fuel = 250.0;
       s.turbulence = 0.9;
@@ -99,7 +99,7 @@ FluidParams preset_params(const std::string& name) {
     p.height = 256;
     p.advection = Advection::kMacCormack;
     p.buoyancy = 0.4;
-    p.vorticity = 1.5;
+    p.vorticity = 3.0;
     p.cooling = 7000.0;
     p.mixing = 5.0;
     p.jitter = 0.0;
@@ -116,11 +116,11 @@ FluidParams preset_params(const std::string& name) {
     s.rate = 8000.0;
     s.temperature = 1400.0;
     s.fuel = 300.0;
-    s.turbulence = 0.3;
+    s.turbulence = 0.6;
     s.grain = 4.0;
-    s.kick = 20.0;
-    s.flicker = 0.35;
-    s.flicker_hz = 3.0;
+    s.kick = 60.0;
+    s.flicker = 0.5;
+    s.flicker_hz = 6.0;
     p.sources = {s};
   } else {
     throw std::invalid_argument("preset: \"candle\", \"fireplace\", \"fire\" or \"wick\" (got \"" +
@@ -142,6 +142,8 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
   if (!(opt.camera.exposure > 0.0) || !std::isfinite(opt.camera.exposure) ||
       opt.camera.exposure > 1e6)
     throw std::invalid_argument("exposure: a number in (0, 1e6]");
+  if (!(opt.camera.soot >= 0.0) || !std::isfinite(opt.camera.soot))
+    throw std::invalid_argument("soot: fuel units >= 0");
   if (!(opt.camera.knee >= 0.0) || !(opt.camera.knee < 1.0))
     throw std::invalid_argument("knee: a number in [0, 1)");
   if (opt.out_dir.empty()) throw std::invalid_argument("out: a folder to write the clip to");
@@ -185,10 +187,11 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
   field.has_velocity = true;
   for (int f = 0; f < opt.frames; ++f) {
     for (int k = 0; k < opt.substeps; ++k) one_step();
-    const Image img = opt.radiance ? render_radiance(solver.temperature(), params.t_ambient, t_ref,
-                                                     opt.colour, opt.camera, opt.scale)
-                                   : render_temperature(solver.temperature(), params.t_ambient,
-                                                        t_ref, opt.colour, opt.scale);
+    const Image img = opt.radiance
+                          ? render_radiance(solver.temperature(), params.t_ambient, t_ref,
+                                            opt.colour, opt.camera, opt.scale, &solver.fuel())
+                          : render_temperature(solver.temperature(), params.t_ambient, t_ref,
+                                               opt.colour, opt.scale);
     write_png(frame_path(opt.out_dir, f), img);
     if (opt.write_fields) {
       field.index = static_cast<uint32_t>(f);
@@ -219,6 +222,7 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
   m.t_ambient = params.t_ambient;
   m.t_reference = t_ref;
   write_manifest(opt.out_dir, m);
+  sum.t_reference = t_ref;
   sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return sum;
 }

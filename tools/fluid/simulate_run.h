@@ -36,6 +36,7 @@ struct SimulateSummary {
   double max_relative_residual = 0.0;  // max over steps of max|h div u| / max|u|
   int unconverged_steps = 0;
   double seconds = 0.0;
+  double t_reference = 0.0;  // K: the temperature shown as full brightness
 };
 
 // Progress: called after each frame with (frames done, frames total).
