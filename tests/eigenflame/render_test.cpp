@@ -227,6 +227,41 @@ TEST(EigenFallback, MissingModelFallsBackToo) {
   EXPECT_EQ(spec->model->source, "<built-in default>");
 }
 
+// "builtin:NAME" plays a model embedded in the runtime; an unknown name is
+// reported (naming what is built in) and the default plays.
+TEST(EigenBuiltinModels, SceneNamesTheCandleOrTheFireModel) {
+  auto source_of = [](const std::string& name, std::string* error = nullptr) {
+    const SceneDesc desc = load_scene_text(
+        "[[element]]\nkind = \"eigenflame\"\nmodel = \"builtin:" + name + "\"\n", "<test>");
+    const auto* spec = dynamic_cast<const EigenFlameSpec*>(desc.elements[0].spec.get());
+    if (!spec) return std::string("(no eigenflame spec)");
+    if (error) *error = spec->model_error;
+    return spec->model->source;
+  };
+  EXPECT_EQ(source_of("fire"), "<built-in fire>");
+  EXPECT_EQ(source_of("candle"), "<built-in default>");
+  std::string error;
+  EXPECT_EQ(source_of("nosuch", &error), "<built-in default>");
+  EXPECT_NE(error.find("no such built-in model"), std::string::npos) << error;
+  // Two different models, not one under two names.
+  const auto fire = builtin_eigen_model("fire"), candle = builtin_eigen_model("candle");
+  EXPECT_NE(fire->model.get(), candle->model.get());
+  // The shipped scenes use them.
+  for (const auto& [scene, want] :
+       {std::pair<const char*, const char*>{"eigen-fireplace", "<built-in fire>"},
+        {"eigen-candle", "<built-in default>"}}) {
+    const SceneDesc d = load_builtin_scene(scene);
+    int eigen = 0;
+    for (const auto& e : d.elements)
+      if (const auto* spec = dynamic_cast<const EigenFlameSpec*>(e.spec.get())) {
+        ++eigen;
+        EXPECT_EQ(spec->model->source, want) << scene;
+        EXPECT_TRUE(spec->model_error.empty()) << scene << ": " << spec->model_error;
+      }
+    EXPECT_GE(eigen, 1) << scene;
+  }
+}
+
 TEST(EigenScenes, ShippedScenesLoad) {
   for (const char* name : {"eigen-fireplace", "eigen-candle", "eigen-bench-f1-e8",
                            "eigen-bench-f4-e32", "eigen-bench-f8-e64"}) {

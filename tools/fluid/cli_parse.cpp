@@ -68,9 +68,20 @@ HeatSource parse_source(const std::string& text) {
       s.flicker = v;
     else if (key == "hz")
       s.flicker_hz = v;
+    else if (key == "angle")
+      s.angle = v;
+    else if (key == "fuel")
+      s.fuel = v;
+    else if (key == "turb")
+      s.turbulence = v;
+    else if (key == "grain")
+      s.grain = v;
+    else if (key == "kick")
+      s.kick = v;
     else
-      throw std::invalid_argument("--source: unknown key \"" + key +
-                                  "\" (expected x, y, r, rx, ry, rate, temp, flicker, hz)");
+      throw std::invalid_argument(
+          "--source: unknown key \"" + key +
+          "\" (expected x, y, r, rx, ry, rate, temp, flicker, hz, angle, fuel, turb, grain, kick)");
   }
   return s;
 }

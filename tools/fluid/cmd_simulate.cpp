@@ -21,7 +21,9 @@ int run_simulate(int argc, char** argv) {
       "OUT/frames/frame_000000.png..., OUT/fields/field_000000.cfld... (temperature + velocity),\n"
       "OUT/manifest.toml. Units: cells, seconds, kelvin. See tools/fluid/README.md.",
       "candela-tool simulate"};
-  std::string out, preset = "candle", grid, colour = "gray", name;
+  std::string out, preset = "candle", grid, colour = "gray", name, advection,
+                   render = "temperature";
+  Camera camera;
   int frames = 120, substeps = 2, scale = 1;
   double fps = 30.0, warmup = 3.0, t_reference = 0.0;
   uint64_t seed = 1;
@@ -31,7 +33,9 @@ int run_simulate(int argc, char** argv) {
   FluidParams base;
   app.add_option("--out,-o", out, "folder to write the clip to")->required();
   app.add_option("--frames,-n", frames, "frames to write")->capture_default_str();
-  app.add_option("--preset", preset, "starting parameters: candle (96x160) or fireplace (192x128)")
+  app.add_option("--preset", preset,
+                 "starting parameters: candle (96x160) or fireplace (192x128) (coarse), fire "
+                 "(192x288, logs) or wick (128x256, a candle flame) (MacCormack, combustion)")
       ->capture_default_str();
   app.add_option("--grid", grid, "grid size WxH in cells (8..2048 each), e.g. 128x128");
   app.add_option("--fps", fps, "frames per second of the clip")->capture_default_str();
@@ -44,9 +48,17 @@ int run_simulate(int argc, char** argv) {
   auto* o_vor = app.add_option("--vorticity", base.vorticity, "eps, vorticity confinement");
   auto* o_cool = app.add_option("--cooling", base.cooling, "C_r, K/s");
   auto* o_jit = app.add_option("--jitter", base.jitter, "per-cell randomness of heating, 0..1");
+  app.add_option("--advection", advection, "semi-lagrangian or maccormack (default: the preset's)");
+  auto* o_burn = app.add_option("--burn-rate", base.burn_rate, "fuel burnt per second, 1/s");
+  auto* o_ign = app.add_option("--ignition", base.ignition, "fuel burns above this, K");
+  auto* o_heat =
+      app.add_option("--heat-release", base.heat_release, "heating per unit of fuel burnt, K");
+  auto* o_flame = app.add_option("--flame-temperature", base.flame_temperature,
+                                 "burning heats no cell above this, K");
   app.add_option("--source", sources,
                  "heat source (repeatable): x=,y=,rx=,ry= (fractions of the grid, y from the "
-                 "bottom), rate= (K/s), temp= (K), flicker= (0..1), hz=; replaces the preset's");
+                 "bottom), angle= (deg), rate= (K/s), temp= (K), flicker= (0..1), hz=, fuel= "
+                 "(per s), turb= (0..1), grain= (cells), kick= (cells/s); replaces the preset's");
   app.add_option("--wind", wind,
                  "wind speed over time, TIME:SPEED pairs (s:cells/s, + = right), linear between, "
                  "e.g. 0:0,2:30,4:0; replaces the preset's (\"none\" = still air)");
@@ -57,6 +69,19 @@ int run_simulate(int argc, char** argv) {
   auto* o_tol = app.add_option("--pressure-tolerance", base.pressure_tolerance,
                                "stop the pressure solve when max|div u| <= this x max|u| / cell");
   app.add_option("--colour,--color", colour, "frame colours: gray or blackbody")
+      ->capture_default_str();
+  app.add_option("--render", render,
+                 "temperature (gray = normalised temperature) or radiance (black-body luminance "
+                 "through a camera: --exposure, soft clip from --knee)")
+      ->capture_default_str();
+  app.add_option("--exposure", camera.exposure,
+                 "radiance: brightness of T_reference before the soft clip")
+      ->capture_default_str();
+  app.add_option("--knee", camera.knee, "radiance: where the soft clip starts, 0..1")
+      ->capture_default_str();
+  app.add_option("--soot", camera.soot,
+                 "radiance: gas glows by 1 - exp(-fuel / SOOT) (soot where fuel burns); 0 = all "
+                 "hot gas glows")
       ->capture_default_str();
   app.add_option("--scale", scale, "image pixels per cell (1..16)")->capture_default_str();
   app.add_option(
@@ -79,6 +104,22 @@ int run_simulate(int argc, char** argv) {
     if (o_vor->count()) opt.params.vorticity = base.vorticity;
     if (o_cool->count()) opt.params.cooling = base.cooling;
     if (o_jit->count()) opt.params.jitter = base.jitter;
+    if (o_burn->count()) opt.params.burn_rate = base.burn_rate;
+    if (o_ign->count()) opt.params.ignition = base.ignition;
+    if (o_heat->count()) opt.params.heat_release = base.heat_release;
+    if (o_flame->count()) opt.params.flame_temperature = base.flame_temperature;
+    if (advection == "maccormack")
+      opt.params.advection = Advection::kMacCormack;
+    else if (advection == "semi-lagrangian")
+      opt.params.advection = Advection::kSemiLagrangian;
+    else if (!advection.empty())
+      throw std::invalid_argument("--advection: semi-lagrangian or maccormack (got \"" + advection +
+                                  "\")");
+    if (render == "radiance")
+      opt.radiance = true;
+    else if (render != "temperature")
+      throw std::invalid_argument("--render: temperature or radiance (got \"" + render + "\")");
+    opt.camera = camera;
     if (o_drag->count()) opt.params.wind_drag = base.wind_drag;
     if (o_tol->count()) opt.params.pressure_tolerance = base.pressure_tolerance;
     if (side_walls) opt.params.boundary.open_left = opt.params.boundary.open_right = false;
@@ -119,11 +160,11 @@ int run_simulate(int argc, char** argv) {
     const SimulateSummary s = run_simulation(opt, progress);
     if (!quiet)
       std::fprintf(stderr,
-                   "simulate: %d frames (%d steps of %dx%d) in %.2f s -> %s\n"
+                   "simulate: %d frames (%d steps of %dx%d) in %.2f s -> %s (T_reference %.0f K)\n"
                    "simulate: pressure: at most %d CG iterations/step, max|div u|*cell <= %.2g x "
                    "max|u|%s\n",
                    frames, s.steps, opt.params.width, opt.params.height, s.seconds, out.c_str(),
-                   s.max_pressure_iterations, s.max_relative_residual,
+                   s.t_reference, s.max_pressure_iterations, s.max_relative_residual,
                    s.unconverged_steps ? " (some steps hit the iteration limit)" : "");
     return 0;
   } catch (const std::invalid_argument& e) {

@@ -19,14 +19,14 @@ uint8_t encode_srgb(double linear) {
   return static_cast<uint8_t>(std::lround(e * 255.0));
 }
 
-}  // namespace
-
-std::array<double, 3> black_body_rgb(double kelvin) {
+// Unnormalised CIE XYZ of a Planck radiator at `kelvin` (Wyman-Sloan-Shirley
+// matching functions, 5 nm steps).
+std::array<double, 3> black_body_xyz(double kelvin) {
   kelvin = std::max(kelvin, 100.0);
   double X = 0.0, Y = 0.0, Z = 0.0;
   for (double nm = 380.0; nm <= 780.0; nm += 5.0) {
     const double l = nm * 1e-9;
-    // Planck's law up to a constant factor (normalised below).
+    // Planck's law up to a constant factor (normalised by the callers).
     const double planck = 1.0 / (l * l * l * l * l * (std::exp(1.4387769e-2 / (l * kelvin)) - 1.0));
     const double xb = 1.056 * lobe(nm, 599.8, 37.9, 31.0) + 0.362 * lobe(nm, 442.0, 16.0, 26.7) -
                       0.065 * lobe(nm, 501.1, 20.4, 26.2);
@@ -36,6 +36,67 @@ std::array<double, 3> black_body_rgb(double kelvin) {
     Y += planck * yb;
     Z += planck * zb;
   }
+  return {X, Y, Z};
+}
+
+}  // namespace
+
+double black_body_luminance(double kelvin) {
+  static const double ref = black_body_xyz(1500.0)[1];
+  return black_body_xyz(kelvin)[1] / ref;
+}
+
+double soft_clip(double x, double knee) {
+  if (x <= knee) return std::max(x, 0.0);
+  const double r = 1.0 - knee;  // continuous value and slope at the knee
+  return 1.0 - r * std::exp(-(x - knee) / r);
+}
+
+Image render_radiance(const Grid2& t, double t_ambient, double t_reference, ColourMode mode,
+                      const Camera& cam, int scale, const Grid2* fuel) {
+  const bool soot = fuel && cam.soot > 0.0 && fuel->width == t.width && fuel->height == t.height;
+  Image img;
+  img.width = t.width * scale;
+  img.height = t.height * scale;
+  img.channels = mode == ColourMode::kGray ? 1 : 3;
+  img.pixels.resize(static_cast<size_t>(img.width) * img.height * img.channels);
+  // Y(T)/Y(T_ref) and the Planck colour in 10 K steps up to twice T_ref.
+  const double step = 10.0, lo = t_ambient;
+  const double y_ref = black_body_luminance(t_reference);
+  std::vector<double> lum;
+  std::vector<std::array<double, 3>> rgb;
+  for (double k = lo; k <= 2.0 * t_reference + step; k += step) {
+    lum.push_back(black_body_luminance(k) / y_ref);
+    if (mode != ColourMode::kGray) {
+      auto c = black_body_rgb(k);
+      const double l = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+      for (double& x : c) x /= std::max(l, 1e-12);  // unit luminance, Planck hue
+      rgb.push_back(c);
+    }
+  }
+  for (int y = 0; y < img.height; ++y) {
+    uint8_t* row = img.row(y);
+    const double gy = (img.height - 1 - y + 0.5) / scale - 0.5;  // grid rows run bottom-up
+    for (int x = 0; x < img.width; ++x) {
+      const double gx = (x + 0.5) / scale - 0.5;
+      const double f = std::clamp((t.sample(gx, gy) - lo) / step, 0.0, lum.size() - 1.001);
+      const auto k = static_cast<size_t>(f);
+      const double a = f - k;
+      double e = cam.exposure * (lum[k] + (lum[k + 1] - lum[k]) * a);
+      if (soot) e *= 1.0 - std::exp(-std::max(0.0, fuel->sample(gx, gy)) / cam.soot);
+      if (mode == ColourMode::kGray) {
+        row[x] = encode_srgb(soft_clip(e, cam.knee));
+      } else {
+        for (int c = 0; c < 3; ++c)
+          row[3 * x + c] = encode_srgb(soft_clip(e * rgb[k][c], cam.knee));
+      }
+    }
+  }
+  return img;
+}
+
+std::array<double, 3> black_body_rgb(double kelvin) {
+  const auto [X, Y, Z] = black_body_xyz(kelvin);
   std::array<double, 3> rgb = {3.2406 * X - 1.5372 * Y - 0.4986 * Z,
                                -0.9689 * X + 1.8758 * Y + 0.0415 * Z,
                                0.0557 * X - 0.2040 * Y + 1.0570 * Z};

@@ -24,4 +24,28 @@ std::array<double, 3> black_body_rgb(double kelvin);
 Image render_temperature(const Grid2& temperature, double t_ambient, double t_reference,
                          ColourMode mode, int scale);
 
+// Visible luminance (CIE Y) of a black body at `kelvin`, relative to one at
+// 1500 K: it climbs about 3 decades from 900 K to 1900 K, which is why a
+// flame's edge is crisp although its temperature falls off smoothly.
+double black_body_luminance(double kelvin);
+
+// A camera looking at the hot gas: pixel = soft_clip(exposure * Y(T) /
+// Y(T_ref)), linear up to `knee`, then rolling off toward 1 (so the core
+// clips to white as a real sensor's does), then the sRGB curve. Black-body
+// mode clips each channel of the Planck colour that way, so cores go
+// red -> yellow -> white as real footage does.
+// With a fuel grid and soot > 0, the gas glows in proportion to its
+// emissivity 1 - exp(-fuel / soot): soot forms where fuel burns, so the
+// visible flame ends where the fuel does (a pointed tip), and the hot but
+// clear gas above it stays invisible, as over a real candle.
+struct Camera {
+  double exposure = 1.0;
+  double knee = 0.7;  // 0..1: where the soft clip starts
+  double soot = 0.0;  // fuel units for emissivity 1 - 1/e; 0 = every hot cell glows
+};
+double soft_clip(double x, double knee);
+Image render_radiance(const Grid2& temperature, double t_ambient, double t_reference,
+                      ColourMode mode, const Camera& camera, int scale,
+                      const Grid2* fuel = nullptr);
+
 }  // namespace candela::fluid

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +14,38 @@ namespace {
 }
 
 bool finite(double v) { return std::isfinite(v); }
+
+uint64_t mix64(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+// Value noise in [0, 1] on an integer lattice in (x, y, t), smoothstep-blended:
+// a hash of the lattice point (not a random stream), so it does not depend on
+// the order cells are visited in.
+double value_noise(uint64_t seed, double x, double y, double t) {
+  const double fx = std::floor(x), fy = std::floor(y), ft = std::floor(t);
+  const auto ix = static_cast<int64_t>(fx), iy = static_cast<int64_t>(fy),
+             it = static_cast<int64_t>(ft);
+  auto s = [](double a) { return a * a * (3.0 - 2.0 * a); };
+  const double ax = s(x - fx), ay = s(y - fy), at = s(t - ft);
+  auto h = [&](int64_t i, int64_t j, int64_t k) {
+    const uint64_t z = mix64(seed ^ mix64(static_cast<uint64_t>(i) * 0x8da6b343ull ^
+                                          static_cast<uint64_t>(j) * 0xd8163841ull ^
+                                          static_cast<uint64_t>(k) * 0xcb1ab31full));
+    return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
+  };
+  double c[2];
+  for (int k = 0; k < 2; ++k) {
+    const double a = h(ix, iy, it + k) + (h(ix + 1, iy, it + k) - h(ix, iy, it + k)) * ax;
+    const double b =
+        h(ix, iy + 1, it + k) + (h(ix + 1, iy + 1, it + k) - h(ix, iy + 1, it + k)) * ax;
+    c[k] = a + (b - a) * ay;
+  }
+  return c[0] + (c[1] - c[0]) * at;
+}
 
 }  // namespace
 
@@ -26,11 +59,20 @@ void validate(const FluidParams& p) {
   if (!finite(p.buoyancy) || p.buoyancy < 0.0) bad("buoyancy", "a number >= 0");
   if (!finite(p.vorticity) || p.vorticity < 0.0) bad("vorticity", "a number >= 0");
   if (!finite(p.cooling) || p.cooling < 0.0) bad("cooling", "a number >= 0 (K/s)");
+  if (!finite(p.mixing) || p.mixing < 0.0 || p.mixing > 1000.0)
+    bad("mixing", "a rate in 0..1000 per second");
   if (!finite(p.jitter) || p.jitter < 0.0 || p.jitter > 1.0) bad("jitter", "a number in 0..1");
   if (!finite(p.wind_drag) || p.wind_drag < 0.0) bad("wind-drag", "a number >= 0 (1/s)");
   if (!finite(p.pressure_tolerance) || p.pressure_tolerance <= 0.0 || p.pressure_tolerance > 0.1)
     bad("pressure-tolerance", "a number in (0, 0.1]");
   if (p.pressure_max_iterations < 1) bad("pressure-iterations", "an integer >= 1");
+  if (!finite(p.burn_rate) || p.burn_rate < 0.0 || p.burn_rate > 1e4)
+    bad("burn-rate", "a rate in 0..10000 per second");
+  if (!finite(p.ignition) || p.ignition < 0.0) bad("ignition", "a temperature >= 0 K");
+  if (!finite(p.flame_temperature) || p.flame_temperature <= p.t_ambient)
+    bad("flame-temperature", "a temperature above the ambient temperature");
+  if (!finite(p.heat_release) || p.heat_release < 0.0 || p.heat_release > 1e5)
+    bad("heat-release", "kelvin per unit of fuel in 0..100000");
   for (size_t k = 0; k < p.sources.size(); ++k) {
     const HeatSource& s = p.sources[k];
     const std::string n = "source " + std::to_string(k + 1);
@@ -45,6 +87,14 @@ void validate(const FluidParams& p) {
       bad(n + " flicker", "a number in 0..1");
     if (!finite(s.flicker_hz) || s.flicker_hz <= 0.0 || s.flicker_hz > 1000.0)
       bad(n + " flicker-hz", "a frequency in (0, 1000]");
+    if (!finite(s.angle) || std::fabs(s.angle) > 360.0) bad(n + " angle", "degrees in -360..360");
+    if (!finite(s.fuel) || s.fuel < 0.0) bad(n + " fuel", "a fuel rate >= 0 per second");
+    if (!finite(s.turbulence) || s.turbulence < 0.0 || s.turbulence > 1.0)
+      bad(n + " turbulence", "a number in 0..1");
+    if (!finite(s.grain) || s.grain < 1.0 || s.grain > 4096.0)
+      bad(n + " grain", "a noise wavelength in 1..4096 cells");
+    if (!finite(s.kick) || s.kick < 0.0 || s.kick > 10000.0)
+      bad(n + " kick", "a speed in 0..10000 cells/s");
   }
   for (size_t k = 0; k < p.wind.size(); ++k) {
     if (!finite(p.wind[k].time) || !finite(p.wind[k].speed)) bad("wind", "finite TIME:SPEED pairs");
@@ -71,9 +121,11 @@ FluidSolver::FluidSolver(const FluidParams& params)
       u_(params.width + 1, params.height),
       v_(params.width, params.height + 1),
       t_(params.width, params.height, params.t_ambient),
+      f_(params.width, params.height),
       u_next_(params.width + 1, params.height),
       v_next_(params.width, params.height + 1),
       t_next_(params.width, params.height),
+      f_next_(params.width, params.height),
       uc_(params.width, params.height),
       vc_(params.width, params.height),
       omega_(params.width, params.height),
@@ -110,24 +162,50 @@ void FluidSolver::add_heat(double dt) {
     const double mod = std::max(0.0, 1.0 + src.flicker * source_modulation(s));
     const double cx = src.x * w, cy = src.y * h;
     const double rx = std::max(src.rx * w, 0.5), ry = std::max(src.ry * h, 0.5);
-    const int i0 = std::max(0, static_cast<int>(std::floor(cx - rx)));
-    const int i1 = std::min(w - 1, static_cast<int>(std::ceil(cx + rx)));
-    const int j0 = std::max(0, static_cast<int>(std::floor(cy - ry)));
-    const int j1 = std::min(h - 1, static_cast<int>(std::ceil(cy + ry)));
+    const double a = src.angle * (std::numbers::pi / 180.0), ca = std::cos(a), sa = std::sin(a);
+    // Bounding box of the (rotated) ellipse.
+    const double bx = std::hypot(rx * ca, ry * sa), by = std::hypot(rx * sa, ry * ca);
+    const int i0 = std::max(0, static_cast<int>(std::floor(cx - bx)));
+    const int i1 = std::min(w - 1, static_cast<int>(std::ceil(cx + bx)));
+    const int j0 = std::max(0, static_cast<int>(std::floor(cy - by)));
+    const int j1 = std::min(h - 1, static_cast<int>(std::ceil(cy + by)));
     const double span = src.temperature - params_.t_ambient;
+    const uint64_t nseed = mix64(params_.seed * 0x100000001b3ull + s);
+    // The noise drifts upward with time and changes ~2x per flicker period,
+    // so the emitter feeds tongues that come and go.
+    const double nt = time_ * src.flicker_hz * 2.0;
+    const double relax = 1.0 - std::exp(-20.0 * dt);
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
-        const double dx = (i + 0.5 - cx) / rx, dy = (j + 0.5 - cy) / ry;
+        const double px = i + 0.5 - cx, py = j + 0.5 - cy;
+        const double dx = (ca * px + sa * py) / rx, dy = (-sa * px + ca * py) / ry;
         const double g = 1.0 - (dx * dx + dy * dy);
         if (g <= 0.0) continue;
-        // Drawn for every cell in the box, so the sequence does not depend
-        // on the shape: same seed, same draws.
         const double noise = 1.0 + params_.jitter * (2.0 * rng_.unit_double() - 1.0);
+        double turb = 1.0;
+        if (src.turbulence > 0.0) {
+          const double n = value_noise(nseed, (i + 0.5) / src.grain, (j + 0.5) / src.grain, nt);
+          // Sharpened: mostly fed or mostly starved, few half-fed places.
+          const double e = std::clamp((n - 0.5) * 2.5 + 0.5, 0.0, 1.0);
+          turb = std::max(0.0, 1.0 - src.turbulence + src.turbulence * 2.0 * e);
+        }
+        const double amount = g * mod * noise * turb;
+        if (src.fuel > 0.0) f_.at(i, j) += src.fuel * amount * dt;
+        if (src.kick > 0.0) {
+          const double nu =
+              value_noise(nseed ^ 0x75ull, (i + 0.5) / src.grain, j / src.grain, nt * 1.7) - 0.5;
+          const double nv =
+              value_noise(nseed ^ 0x76ull, i / src.grain, (j + 0.5) / src.grain, nt * 1.7);
+          const double k = relax * std::min(1.0, 2.0 * g);
+          // Mostly upward, a little sideways: the gas leaves the fuel bed rising.
+          u_.at(i, j) += (0.6 * src.kick * nu - u_.at(i, j)) * k;
+          v_.at(i, j) += (src.kick * (0.5 + nv) - v_.at(i, j)) * k;
+        }
         double& t = t_.at(i, j);
-        if (t >= src.temperature) continue;
+        if (t >= src.temperature || src.rate <= 0.0) continue;
         // Heating slows as the cell nears the source temperature; solved
         // exactly over the step, so no dt overshoots it.
-        const double lambda = src.rate * g * mod * noise / span;
+        const double lambda = src.rate * amount / span;
         t = src.temperature - (src.temperature - t) * std::exp(-lambda * dt);
       }
   }
@@ -135,39 +213,69 @@ void FluidSolver::add_heat(double dt) {
 
 void FluidSolver::advect(double dt) {
   const int w = params_.width, h = params_.height;
-  // Second-order (midpoint) back-trace through the current velocity; the
-  // velocity at the start point is read off the grid directly (exact on its
-  // own face, a 2- or 4-face average elsewhere), which saves two bilinear
-  // samples per point.
-  auto trace = [&](double x, double y, double u1, double v1, double& sx, double& sy) {
-    const double mx = x - 0.5 * dt * u1, my = y - 0.5 * dt * v1;
-    sx = x - dt * sample_u(mx, my);
-    sy = y - dt * sample_v(mx, my);
+  const bool mac = params_.advection == Advection::kMacCormack;
+  const bool fuel = f_.max_abs() > 0.0;
+  // Second-order (midpoint) trace through the current velocity, `d` seconds
+  // back (d < 0: forward, for MacCormack's reverse step).
+  auto trace = [&](double x, double y, double d, double& sx, double& sy) {
+    const double mx = x - 0.5 * d * sample_u(x, y), my = y - 0.5 * d * sample_v(x, y);
+    sx = x - d * sample_u(mx, my);
+    sy = y - d * sample_v(mx, my);
   };
-  double sx = 0.0, sy = 0.0;
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i <= w; ++i) {
-      const int il = std::max(i - 1, 0), ir = std::min(i, w - 1);
-      const double v1 = 0.25 * (v_.at(il, j) + v_.at(ir, j) + v_.at(il, j + 1) + v_.at(ir, j + 1));
-      trace(i, j + 0.5, u_.at(i, j), v1, sx, sy);
-      u_next_.at(i, j) = sample_u(sx, sy);
-    }
-  for (int j = 0; j <= h; ++j)
-    for (int i = 0; i < w; ++i) {
-      const int jb = std::max(j - 1, 0), jt = std::min(j, h - 1);
-      const double u1 = 0.25 * (u_.at(i, jb) + u_.at(i + 1, jb) + u_.at(i, jt) + u_.at(i + 1, jt));
-      trace(i + 0.5, j, u1, v_.at(i, j), sx, sy);
-      v_next_.at(i, j) = sample_v(sx, sy);
-    }
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) {
-      trace(i + 0.5, j + 0.5, 0.5 * (u_.at(i, j) + u_.at(i + 1, j)),
-            0.5 * (v_.at(i, j) + v_.at(i, j + 1)), sx, sy);
-      t_next_.at(i, j) = t_.sample(sx - 0.5, sy - 0.5);
-    }
+  // One semi-Lagrangian pass of `src` (a lattice offset ox, oy from the
+  // cell corner) into `dst`.
+  auto pass = [&](const Grid2& src, Grid2& dst, double ox, double oy, double d) {
+    double sx = 0.0, sy = 0.0;
+    for (int j = 0; j < dst.height; ++j)
+      for (int i = 0; i < dst.width; ++i) {
+        trace(i + ox, j + oy, d, sx, sy);
+        dst.at(i, j) = src.sample(sx - ox, sy - oy);
+      }
+  };
+  // MacCormack (Selle et al. 2008): forward pass q^ = A(q), reverse pass
+  // q~ = A^-1(q^); q^ + (q - q~)/2 cancels the first-order error. Clamped to
+  // the values the forward pass blended, so it is as stable as one pass.
+  auto advect_one = [&](Grid2& q, Grid2& next, Grid2& back, double ox, double oy) {
+    pass(q, next, ox, oy, dt);
+    if (!mac) return;
+    if (back.width != q.width || back.height != q.height) back = Grid2(q.width, q.height);
+    pass(next, back, ox, oy, -dt);
+    double sx = 0.0, sy = 0.0, lo = 0.0, hi = 0.0;
+    for (int j = 0; j < q.height; ++j)
+      for (int i = 0; i < q.width; ++i) {
+        trace(i + ox, j + oy, dt, sx, sy);
+        q.sample_range(sx - ox, sy - oy, lo, hi);
+        const double c = next.at(i, j) + 0.5 * (q.at(i, j) - back.at(i, j));
+        next.at(i, j) = std::clamp(c, lo, hi);
+      }
+  };
+  (void)w;
+  (void)h;
+  advect_one(u_, u_next_, u_back_, 0.0, 0.5);
+  advect_one(v_, v_next_, v_back_, 0.5, 0.0);
+  advect_one(t_, t_next_, t_back_, 0.5, 0.5);
+  if (fuel) advect_one(f_, f_next_, f_back_, 0.5, 0.5);
   std::swap(u_, u_next_);
   std::swap(v_, v_next_);
   std::swap(t_, t_next_);
+  if (fuel) std::swap(f_, f_next_);
+}
+
+// Fuel above the ignition temperature burns at burn_rate: over a step a share
+// 1 - exp(-burn_rate dt) of it goes, and each unit burnt heats the cell by
+// heat_release kelvin, up to flame_temperature. Below that, fuel x
+// heat_release + T is conserved.
+void FluidSolver::burn(double dt) {
+  if (params_.burn_rate <= 0.0) return;
+  const double share = 1.0 - std::exp(-params_.burn_rate * dt);
+  for (size_t k = 0; k < f_.data.size(); ++k) {
+    double& f = f_.data[k];
+    if (f <= 0.0 || t_.data[k] <= params_.ignition) continue;
+    const double b = f * share;
+    f -= b;
+    double& t = t_.data[k];
+    t = std::max(t, std::min(t + params_.heat_release * b, params_.flame_temperature));
+  }
 }
 
 // dT/dt = -C_r s^4, s = (T - T_amb)/(T_max - T_amb), T_max the hottest cell.
@@ -177,8 +285,12 @@ void FluidSolver::advect(double dt) {
 // overshoot ambient. Cells colder than ambient warm back the same way (m is
 // then the largest |T - T_amb|: the same thing when everything is hot).
 void FluidSolver::cool(double dt) {
-  if (params_.cooling <= 0.0) return;
   const double amb = params_.t_ambient;
+  if (params_.mixing > 0.0) {
+    const double keep = std::exp(-params_.mixing * dt);
+    for (double& t : t_.data) t = amb + (t - amb) * keep;
+  }
+  if (params_.cooling <= 0.0) return;
   double m0 = 0.0;
   for (double t : t_.data) m0 = std::max(m0, std::fabs(t - amb));
   if (m0 <= 0.0) return;
@@ -286,6 +398,7 @@ StepStats FluidSolver::step(double dt) {
   StepStats st;
   add_heat(dt);
   advect(dt);
+  burn(dt);
   cool(dt);
   add_forces(dt);
   st.pressure = project();
@@ -318,6 +431,27 @@ double FluidSolver::kinetic_energy() const {
   for (double x : u_.data) e += x * x;
   for (double x : v_.data) e += x * x;
   return 0.5 * e;
+}
+
+double FluidSolver::mean_abs_vorticity() const {
+  const int w = params_.width, h = params_.height;
+  double sum = 0.0;
+  // Curl at cell centres from the face velocities around each cell.
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      auto vc = [&](int a, int b) {
+        a = std::clamp(a, 0, w - 1);
+        b = std::clamp(b, 0, h - 1);
+        return 0.5 * (v_.at(a, b) + v_.at(a, b + 1));
+      };
+      auto uc = [&](int a, int b) {
+        a = std::clamp(a, 0, w - 1);
+        b = std::clamp(b, 0, h - 1);
+        return 0.5 * (u_.at(a, b) + u_.at(a + 1, b));
+      };
+      sum += std::fabs(0.5 * (vc(i + 1, j) - vc(i - 1, j)) - 0.5 * (uc(i, j + 1) - uc(i, j - 1)));
+    }
+  return sum / (static_cast<double>(w) * h);
 }
 
 double FluidSolver::max_temperature() const {

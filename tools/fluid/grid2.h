@@ -44,6 +44,22 @@ struct Grid2 {
     return a + (b - a) * fy;
   }
 
+  // The smallest and largest of the four values sample(x, y) blends: the
+  // bounds MacCormack advection clamps to, so it adds no new extrema.
+  void sample_range(double x, double y, double& lo, double& hi) const {
+    const double mx = width - 1, my = height - 1;
+    x = x < 0.0 ? 0.0 : (x > mx ? mx : x);
+    y = y < 0.0 ? 0.0 : (y > my ? my : y);
+    int i0 = static_cast<int>(x), j0 = static_cast<int>(y);
+    i0 -= (i0 == width - 1 && i0 > 0);
+    j0 -= (j0 == height - 1 && j0 > 0);
+    const int di = width > 1 ? 1 : 0;
+    const size_t dj = height > 1 ? static_cast<size_t>(width) : 0;
+    const double* p = &data[static_cast<size_t>(j0) * width + i0];
+    lo = std::min(std::min(p[0], p[di]), std::min(p[dj], p[dj + di]));
+    hi = std::max(std::max(p[0], p[di]), std::max(p[dj], p[dj + di]));
+  }
+
   double max_abs() const {
     double m = 0.0;
     for (double v : data) m = std::max(m, std::fabs(v));

@@ -18,6 +18,10 @@ struct SimulateOptions {
   int substeps = 2;     // solver steps per frame
   double warmup = 3.0;  // seconds simulated before the first frame
   ColourMode colour = ColourMode::kGray;
+  // Frames show the normalised temperature (false) or what a camera sees of
+  // the hot gas: black-body luminance, exposure and soft clip (true).
+  bool radiance = false;
+  Camera camera;
   int scale = 1;  // image pixels per cell
   bool write_fields = true;
   double t_reference = 0.0;  // 0 = the hottest cell after the warm-up
@@ -32,6 +36,7 @@ struct SimulateSummary {
   double max_relative_residual = 0.0;  // max over steps of max|h div u| / max|u|
   int unconverged_steps = 0;
   double seconds = 0.0;
+  double t_reference = 0.0;  // K: the temperature shown as full brightness
 };
 
 // Progress: called after each frame with (frames done, frames total).
@@ -40,7 +45,9 @@ using Progress = std::function<void(int, int)>;
 // Throws std::invalid_argument for bad options, RuntimeError for I/O.
 SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progress = {});
 
-// Presets the recipe and users start from: "candle" or "fireplace".
+// Presets the recipe and users start from: "candle" or "fireplace" (coarse,
+// semi-Lagrangian, direct heating), "fire" (log fire) or "wick" (candle
+// flame): fine grids, MacCormack advection, fuel burning to heat.
 // Throws std::invalid_argument for an unknown name.
 FluidParams preset_params(const std::string& name);
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <mutex>
 
 #include "core/error.h"
@@ -258,20 +259,28 @@ std::shared_ptr<const EigenModel> load_eigen_model(const std::string& path) {
   return derive(std::move(m), path);
 }
 
-std::shared_ptr<const EigenModel> default_eigen_model() {
+std::shared_ptr<const EigenModel> builtin_eigen_model(const std::string& name) {
   static std::mutex mu;
-  static std::shared_ptr<const EigenModel> cached;
+  static std::map<std::string, std::shared_ptr<const EigenModel>> cached;
   std::lock_guard<std::mutex> lock(mu);
-  if (!cached) {
-    const auto bytes = eigen_models::find("default.cmodel");
-    if (bytes.empty()) throw RuntimeError("eigenflame: the built-in default model is missing");
+  // The default model is the candle model: one file, two names.
+  const std::string file = name == "candle" ? "default" : name;
+  auto& slot = cached[file];
+  if (!slot) {
+    const auto bytes = eigen_models::find(file + ".cmodel");
+    if (bytes.empty())
+      throw ConfigError("<built-in models>", name,
+                        "no such built-in model (built in: default, candle, fire)");
+    const std::string source = "<built-in " + file + ">";
     std::vector<uint8_t> copy(bytes.begin(), bytes.end());
-    auto m = std::make_shared<const model::FlameModel>(model::FlameModel::from(
-        model::ModelFile::from_bytes(std::move(copy), "<built-in default>")));
-    cached = derive(std::move(m), "<built-in default>");
+    auto m = std::make_shared<const model::FlameModel>(
+        model::FlameModel::from(model::ModelFile::from_bytes(std::move(copy), source)));
+    slot = derive(std::move(m), source);
   }
-  return cached;
+  return slot;
 }
+
+std::shared_ptr<const EigenModel> default_eigen_model() { return builtin_eigen_model("default"); }
 
 std::unique_ptr<Element> EigenFlameSpec::create(const SceneContext& context) const {
   try {
@@ -346,9 +355,12 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
   // The model: validated now (so `candela --check` reports it); on failure the
   // element plays the built-in model instead.
   if (!model_name.empty()) {
-    const std::string path = resolve_relative(r.file(), model_name);
     try {
-      spec->model = load_eigen_model(path);
+      // "builtin:NAME": a model embedded in the runtime (firmware/models/NAME.cmodel).
+      if (model_name.rfind("builtin:", 0) == 0)
+        spec->model = builtin_eigen_model(model_name.substr(8));
+      else
+        spec->model = load_eigen_model(resolve_relative(r.file(), model_name));
     } catch (const std::exception& e) {
       spec->model_error = r.key_path("model") + ": " + e.what();  // logged by Scene, --check fails
     }

@@ -4,7 +4,8 @@
 //
 //   [[element]]
 //   kind = "eigenflame"
-//   model = "flames.cmodel"    # relative to the scene; default: the built-in model
+//   model = "flames.cmodel"    # relative to the scene, or builtin:candle / builtin:fire
+//                              # (embedded); default: the built-in default model
 //   position = [0, 0, 0]       # bottom centre of the flame image, world metres
 //   height = 0.5               # world height of the flame image
 //   widen = 1.0                # graph driver: stretch the image sideways (a broader fire)
@@ -53,6 +54,9 @@ struct EigenModel {
 
 // The built-in model (firmware/models/default.cmodel, embedded); loaded once.
 std::shared_ptr<const EigenModel> default_eigen_model();
+// A built-in model by name ("default", "candle", "fire": firmware/models/
+// NAME.cmodel, embedded); loaded once. Throws ConfigError for an unknown name.
+std::shared_ptr<const EigenModel> builtin_eigen_model(const std::string& name);
 // Loads and validates a model file; throws model::ModelError / ConfigError.
 std::shared_ptr<const EigenModel> load_eigen_model(const std::string& path);
 
