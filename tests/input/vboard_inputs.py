@@ -362,8 +362,11 @@ def case_record_libcamera_vimc():
 def case_record_libcamera_unplugged():
     cam_id = vimc_camera_id()
     out = os.path.join(WORK, "clip")
+    # No preview, as in the other recording cases: with the DRM preview on vkms
+    # the recorder does not exit after the camera goes (a known bug, issue 15).
     proc = subprocess.Popen([RECORD, "--backend", "libcamera", "--device", cam_id, "--out", out,
-                             "--size", "320x240", "-n", "100000"], stderr=subprocess.PIPE, text=True)
+                             "--size", "320x240", "-n", "100000", "--preview", "off"],
+                            stderr=subprocess.PIPE, text=True)
     wait_for_manifest_frames(out, 5)
     # Unbinding the driver removes the media graph: udev tells libcamera, as for a yanked camera.
     with open("/sys/bus/platform/drivers/vimc/unbind", "w") as f:
