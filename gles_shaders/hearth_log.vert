@@ -34,6 +34,6 @@ void main() {
   v_normal = cap ? w * sign(a_mesh.z) : radial;
   v_log = vec3(a_mesh.x * len, a_mesh.y, cap ? 1.0 : 0.0);
   v_seed = a_to.w;
-  v_radius = cap && !centre ? 1.0 : (centre ? 0.0 : 1.0);
+  v_radius = centre ? 0.0 : 1.0;  // 0 at an end disc's centre, 1 on every rim vertex
   gl_Position = u_view_projection * vec4(p, 1.0);
 }

@@ -246,7 +246,7 @@ class HearthSpec final : public ElementSpec {
   std::unique_ptr<Element> create(const SceneContext& context) const override {
     HearthSettings s = settings;
     if (!explicit_logs)
-      s.logs = default_logs(log_count, s.width, s.depth, log_radius, seed ? seed : context.seed);
+      s.logs = default_logs(log_count, s.width, s.depth, log_radius, context.seed);
     return std::make_unique<Hearth>(s, position, context.seed);
   }
   HearthSettings settings;
