@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 
@@ -28,49 +29,125 @@ void png_warning_fn(png_structp, png_const_charp) {}
 
 }  // namespace
 
+namespace {
+
+struct MemoryReader {
+  const std::string* bytes;
+  size_t at;
+};
+
+void read_from_memory(png_structp png, png_bytep out, png_size_t n) {
+  auto* r = static_cast<MemoryReader*>(png_get_io_ptr(png));
+  if (n > r->bytes->size() - r->at) png_error(png, "unexpected end of file");
+  std::memcpy(out, r->bytes->data() + r->at, n);
+  r->at += n;
+}
+
+struct Decoded {
+  uint32_t width = 0, height = 0;
+  int channels = 0;
+};
+
+// The stored samples (libpng's low-level API; only trivially destructible
+// locals here, as libpng reports errors by longjmp). No gamma or colour-space
+// conversion: footage from ffmpeg carries gAMA chunks that libpng's simplified
+// API would apply, which darkens it (64 became 44) and makes the frames differ
+// from what every other tool (PIL, the eval scripts, `candela-tool measure`)
+// reads. Palettes and tRNS are expanded, 16-bit samples cut to their high byte.
+// `pixels` is sized by `grow` once the header has been checked.
+template <typename Grow>
+bool decode(MemoryReader& in, Decoded& out, std::string& what, Grow grow) {
+  png_structp png =
+      png_create_read_struct(PNG_LIBPNG_VER_STRING, &what, png_error_fn, png_warning_fn);
+  if (!png) {
+    what = "out of memory";
+    return false;
+  }
+  png_infop info = png_create_info_struct(png);
+  png_bytepp rows = nullptr;
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
+    std::free(rows);
+    return false;
+  }
+  png_set_read_fn(png, &in, read_from_memory);
+  png_read_info(png, info);
+  out.width = png_get_image_width(png, info);
+  out.height = png_get_image_height(png, info);
+  // A small file can declare a huge image (a decompression bomb): bound what it unpacks to.
+  if (static_cast<uint64_t>(out.width) * out.height > kMaxPngPixels) {
+    what = "a " + std::to_string(out.width) + "x" + std::to_string(out.height) +
+           " image, more than the " + std::to_string(kMaxPngPixels >> 20) +
+           " Mpixel limit for a PNG image";
+    png_destroy_read_struct(&png, &info, nullptr);
+    return false;
+  }
+  const int type = png_get_color_type(png, info);
+  if (type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
+  if (type == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8)
+    png_set_expand_gray_1_2_4_to_8(png);
+  if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
+  png_set_strip_16(png);
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  out.channels = png_get_channels(png, info);
+  const size_t stride = png_get_rowbytes(png, info);
+  uint8_t* pixels = grow(stride * out.height);
+  rows = static_cast<png_bytepp>(std::malloc(sizeof(png_bytep) * out.height));
+  if (!rows) png_error(png, "out of memory");
+  for (uint32_t y = 0; y < out.height; ++y) rows[y] = pixels + stride * y;
+  png_read_image(png, rows);
+  png_read_end(png, nullptr);
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::free(rows);
+  return true;
+}
+
+// Gray from RGB as PIL's convert('L') (ITU-R 601-2 luma, 16-bit fixed point).
+uint8_t luma(const uint8_t* p) {
+  return static_cast<uint8_t>((p[0] * 19595u + p[1] * 38470u + p[2] * 7471u + 0x8000u) >> 16);
+}
+
+}  // namespace
+
 Image read_png(const std::string& path, int want_channels) {
   const std::string bytes = read_bounded_file(path, FileKind::kImage);
   if (bytes.size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(bytes.data()), 0, 8) != 0)
     throw ConfigError(path, "", "expected a PNG file (bad signature)");
-
-  png_image img;
-  std::memset(&img, 0, sizeof img);
-  img.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_memory(&img, bytes.data(), bytes.size()))
-    throw ConfigError(path, "", std::string("unreadable PNG: ") + img.message);
-  // A small file can declare a huge image (a decompression bomb): bound what it unpacks to.
-  if (static_cast<uint64_t>(img.width) * img.height > kMaxPngPixels) {
-    png_image_free(&img);
-    throw ConfigError(path, "",
-                      "a " + std::to_string(img.width) + "x" + std::to_string(img.height) +
-                          " image, more than the " + std::to_string(kMaxPngPixels >> 20) +
-                          " Mpixel limit for a PNG image");
-  }
-  const int stored = PNG_IMAGE_SAMPLE_CHANNELS(img.format);
-  const int ch = want_channels ? want_channels : stored;
-  switch (ch) {
-    case 1:
-      img.format = PNG_FORMAT_GRAY;
-      break;
-    case 2:
-      img.format = PNG_FORMAT_GA;
-      break;
-    case 3:
-      img.format = PNG_FORMAT_RGB;
-      break;
-    default:
-      img.format = PNG_FORMAT_RGBA;
-      break;
-  }
+  MemoryReader in{&bytes, 0};
+  Decoded d;
+  std::string what;
+  std::vector<uint8_t> stored;
+  if (!decode(in, d, what, [&](size_t n) {
+        stored.resize(n);
+        return stored.data();
+      }))
+    throw ConfigError(path, "", (what.rfind("a ", 0) == 0 ? "" : "unreadable PNG: ") + what);
+  const int from = d.channels;
+  const int to = want_channels >= 1 && want_channels <= 4 ? want_channels : from;
   Image out;
-  out.width = static_cast<int>(img.width);
-  out.height = static_cast<int>(img.height);
-  out.channels = ch == 1 || ch == 2 || ch == 3 ? ch : 4;
-  out.pixels.resize(PNG_IMAGE_SIZE(img));
-  if (!png_image_finish_read(&img, nullptr, out.pixels.data(), 0, nullptr)) {
-    std::string msg = img.message;
-    png_image_free(&img);
-    throw ConfigError(path, "", "corrupt PNG: " + msg);
+  out.width = static_cast<int>(d.width);
+  out.height = static_cast<int>(d.height);
+  out.channels = to;
+  if (to == from) {
+    out.pixels = std::move(stored);
+    return out;
+  }
+  const size_t px = static_cast<size_t>(d.width) * d.height;
+  out.pixels.resize(px * to);
+  const bool from_alpha = from == 2 || from == 4;
+  for (size_t i = 0; i < px; ++i) {
+    const uint8_t* s = stored.data() + i * from;
+    uint8_t* o = out.pixels.data() + i * to;
+    const uint8_t alpha = from_alpha ? s[from - 1] : 255;
+    if (to <= 2) {
+      o[0] = from >= 3 ? luma(s) : s[0];
+    } else {
+      o[0] = s[0];
+      o[1] = from >= 3 ? s[1] : s[0];
+      o[2] = from >= 3 ? s[2] : s[0];
+    }
+    if (to == 2 || to == 4) o[to - 1] = alpha;
   }
   return out;
 }

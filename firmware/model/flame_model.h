@@ -76,9 +76,12 @@ struct ColourDefaults {
   float hue = 28;  // degrees
   float saturation = 0.9f;
   float glow_radius = 0.06f;  // fraction of the image height
-  float glow_strength = 0.6f;
-  // Linear intensity (0..255) treated as black before colouring: hides the small
-  // reconstruction noise that the sRGB curve would lift out of the dark background.
+  // Off unless asked for: footage already holds what the camera saw, and an
+  // additive glow fills the dark gaps between tongues (a model of the real
+  // campfire played with 0.6 lost half its outline complexity and pieces).
+  float glow_strength = 0.0f;
+  // Intensity (0..255) treated as black before colouring: hides the small
+  // reconstruction noise around the flame.
   float black_level = 4;
 };
 

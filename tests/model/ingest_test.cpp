@@ -42,6 +42,11 @@ TEST(Ingest, FindsPngNamesAndFpsFromInfo) {
   EXPECT_EQ(c.frames(), 5);
 }
 
+static double linear(uint8_t encoded) {
+  const double v = encoded / 255.0;
+  return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+}
+
 TEST(Ingest, AlignsTheFlameBaseAndRemovesTheBackground) {
   ct::IngestOptions o;
   o.width = 64;
@@ -53,7 +58,9 @@ TEST(Ingest, AlignsTheFlameBaseAndRemovesTheBackground) {
     for (int f = 0; f < d.frames(); ++f)
       for (int y = 0; y < d.height; ++y)
         for (int x = 0; x < d.width; ++x) {
-          rows[y] += d.frame(f)[y * d.width + x];
+          // The base is placed in linear light (the dataset stores sRGB-encoded gray).
+          const double v = linear(d.frame(f)[y * d.width + x]);
+          rows[y] += v;
           if (y < 8 && x < 8) corner += d.frame(f)[y * d.width + x];
         }
     const double peak = *std::max_element(rows.begin(), rows.end());

@@ -5,11 +5,17 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "model_build.h"
 #include "model_test_support.h"
@@ -107,3 +113,39 @@ TEST(Pca, HeldOutProjectionIsTheLeastSquaresFit) {
     EXPECT_NEAR(mse, r.mse(f, 6), 1e-3 * mse + 1e-6);
   }
 }
+
+#ifdef _OPENMP
+TEST(Pca, SameBytesOnAnyNumberOfThreads) {
+  // A model is an asset that goes into the repository: building it again from
+  // the same dataset must give the same file, whatever the machine's cores.
+  // 40 frames of 64x96 (six pixel blocks), made up of moving blobs and noise.
+  const int w = 64, h = 96, frames = 40;
+  std::vector<uint8_t> px(static_cast<size_t>(w) * h * frames);
+  uint32_t state = 12345;
+  for (int f = 0; f < frames; ++f)
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        state = state * 1664525u + 1013904223u;
+        const double dx = x - 32 - 8 * std::sin(f * 0.3), dy = y - 60 + 20 * std::cos(f * 0.2);
+        const double v = 200 * std::exp(-(dx * dx + dy * dy) / 300.0) + (state >> 27);
+        px[(static_cast<size_t>(f) * h + y) * w + x] = static_cast<uint8_t>(std::min(255.0, v));
+      }
+  ct::PcaOptions o;
+  o.components = 12;
+  auto run = [&](int threads) {
+    omp_set_num_threads(threads);
+    return ct::pca_snapshot(px.data(), w, h, frames, o);
+  };
+  const ct::PcaResult one = run(1);
+  for (int threads : {2, 3, 5}) {
+    const ct::PcaResult r = run(threads);
+    ASSERT_EQ(r.components(), one.components());
+    EXPECT_EQ(0, std::memcmp(r.basis.data(), one.basis.data(), sizeof(float) * one.basis.size()))
+        << threads << " threads";
+    EXPECT_EQ(0,
+              std::memcmp(r.weights.data(), one.weights.data(), sizeof(float) * one.weights.size()))
+        << threads << " threads";
+  }
+  omp_set_num_threads(omp_get_num_procs());
+}
+#endif

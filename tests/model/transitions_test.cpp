@@ -116,7 +116,9 @@ TEST_F(RealClipTransitions, EveryStepIsBetweenThetaMinAndTheEndsDistance) {
   ct::WeightSpace s = ct::WeightSpace::from(model_->pca.weights, dataset_->clips);
   ct::TransitionOptions o;
   // Steps of about one natural frame-to-frame change.
-  o.theta_min = model_->graph.median_step;
+  // Steps of at least the motion graph's own smallest step (half the median
+  // frame-to-frame change), as `build` uses it.
+  o.theta_min = model_->graph.theta_min;
   o.steps = 40;
   int found = 0;
   // Upright flame -> strongly bent, and back, and two calm stretches.

@@ -1,119 +1,17 @@
 // Loading a folder of frames as the scripts do (PIL: sorted *.png, convert('L')),
 // and PIL's BILINEAR resize, bit for bit, so thresholds fall on the same pixels.
-#include <png.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <csetjmp>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <memory>
 #include <string>
 
 #include "core/error.h"
+#include "core/image.h"
 #include "measure/measure.h"
 
 namespace candela::measure {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-// The stored samples, as PIL reads them: no gamma or colour-space conversion
-// (real footage from ffmpeg carries gAMA chunks, which PIL ignores but libpng's
-// simplified API, core's read_png, applies), palettes expanded, 16-bit samples
-// cut to their high byte, alpha and tRNS ignored later by the gray conversion.
-struct Png {
-  int width = 0, height = 0, channels = 0;
-  std::vector<uint8_t> pixels;
-  std::vector<png_bytep> rows;
-};
-
-struct PngError {
-  char message[200];
-};
-
-[[noreturn]] void on_png_error(png_structp png, png_const_charp msg) {
-  auto* e = static_cast<PngError*>(png_get_error_ptr(png));
-  std::snprintf(e->message, sizeof e->message, "%s", msg);
-  png_longjmp(png, 1);
-}
-void on_png_warning(png_structp, png_const_charp) {}
-
-// Only trivially destructible locals live here: libpng reports errors by longjmp.
-bool decode_png(FILE* f, Png& out, PngError& err, int max_side) {
-  png_structp png =
-      png_create_read_struct(PNG_LIBPNG_VER_STRING, &err, on_png_error, on_png_warning);
-  if (!png) {
-    std::snprintf(err.message, sizeof err.message, "out of memory");
-    return false;
-  }
-  png_infop info = png_create_info_struct(png);
-  if (!info || setjmp(png_jmpbuf(png))) {
-    png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
-    return false;
-  }
-  png_init_io(png, f);
-  png_read_info(png, info);
-  const png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
-  if (w > static_cast<png_uint_32>(max_side) || h > static_cast<png_uint_32>(max_side)) {
-    std::snprintf(err.message, sizeof err.message, "frame is %ux%u, larger than %d px a side",
-                  static_cast<unsigned>(w), static_cast<unsigned>(h), max_side);
-    png_destroy_read_struct(&png, &info, nullptr);
-    return false;
-  }
-  const int type = png_get_color_type(png, info);
-  if (type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
-  if (type == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(png, info) < 8)
-    png_set_expand_gray_1_2_4_to_8(png);
-  png_set_strip_16(png);
-  png_set_interlace_handling(png);
-  png_read_update_info(png, info);
-  out.width = static_cast<int>(w);
-  out.height = static_cast<int>(h);
-  out.channels = png_get_channels(png, info);
-  const size_t stride = png_get_rowbytes(png, info);
-  out.pixels.resize(stride * h);
-  out.rows.resize(h);
-  for (png_uint_32 y = 0; y < h; ++y) out.rows[y] = out.pixels.data() + stride * y;
-  png_read_image(png, out.rows.data());
-  png_read_end(png, nullptr);
-  png_destroy_read_struct(&png, &info, nullptr);
-  return true;
-}
-
-Png read_png_samples(const std::string& path, int max_side) {
-  struct Closer {
-    void operator()(FILE* f) const { std::fclose(f); }
-  };
-  std::unique_ptr<FILE, Closer> f(std::fopen(path.c_str(), "rb"));
-  if (!f) throw ConfigError(path, "", std::string("cannot open PNG: ") + std::strerror(errno));
-  unsigned char sig[8];
-  if (std::fread(sig, 1, 8, f.get()) != 8 || png_sig_cmp(sig, 0, 8) != 0)
-    throw ConfigError(path, "", "unreadable PNG: not a PNG file (bad signature)");
-  std::rewind(f.get());
-  Png out;
-  PngError err{};
-  if (!decode_png(f.get(), out, err, max_side))
-    throw ConfigError(path, "", std::string("unreadable PNG: ") + err.message);
-  return out;
-}
-
-}  // namespace
-
-void to_gray(const uint8_t* in, int channels, int width, uint8_t* out) {
-  if (channels <= 2) {
-    for (int x = 0; x < width; ++x) out[x] = in[x * channels];
-    return;
-  }
-  for (int x = 0; x < width; ++x) {
-    const uint8_t* p = in + x * channels;
-    // Pillow's rgb2l (Convert.c): L24 in 16-bit fixed point, rounded.
-    out[x] = static_cast<uint8_t>((p[0] * 19595u + p[1] * 38470u + p[2] * 7471u + 0x8000u) >> 16);
-  }
-}
 
 Frames load_frames(const std::string& dir, const LoadLimits& limits) {
   std::error_code ec;
@@ -137,7 +35,12 @@ Frames load_frames(const std::string& dir, const LoadLimits& limits) {
   std::vector<uint8_t> row;
   for (const std::string& n : names) {
     const std::string path = (fs::path(dir) / n).string();
-    const Png im = read_png_samples(path, limits.max_side);  // errors name the file
+    // Stored samples, gray as PIL's convert('L'); errors name the file.
+    const Image im = read_png(path, 1);
+    if (im.width > limits.max_side || im.height > limits.max_side)
+      throw ConfigError(path, "",
+                        "frame is " + std::to_string(im.width) + "x" + std::to_string(im.height) +
+                            ", larger than " + std::to_string(limits.max_side) + " px a side");
     if (out.count == 0) {
       const size_t need = static_cast<size_t>(im.width) * im.height * names.size();
       if (need > limits.max_bytes)
@@ -157,9 +60,7 @@ Frames load_frames(const std::string& dir, const LoadLimits& limits) {
                             " but " + first + " is " + std::to_string(out.width) + "x" +
                             std::to_string(out.height) + " (all frames must be the same size)");
     }
-    uint8_t* dst = out.frame(out.count);
-    for (int y = 0; y < im.height; ++y)
-      to_gray(im.rows[y], im.channels, im.width, dst + static_cast<size_t>(y) * im.width);
+    std::copy(im.pixels.begin(), im.pixels.end(), out.frame(out.count));
     ++out.count;
   }
   return out;

@@ -39,9 +39,6 @@ struct LoadLimits {
 // naming the folder or the file: no frames, an unreadable PNG, mixed sizes,
 // frames too large.
 Frames load_frames(const std::string& dir, const LoadLimits& limits = {});
-// PIL's convert('L') of one pixel row: (R*19595 + G*38470 + B*7471 + 0x8000) >> 16
-// (ITU-R 601-2 in 16-bit fixed point); gray+alpha keeps the gray, alpha is ignored.
-void to_gray(const uint8_t* in, int channels, int width, uint8_t* out);
 
 // PIL's Image.resize((w, h), Image.BILINEAR) of 8-bit gray frames: a separable
 // triangle filter whose support grows with the downscale factor, fixed-point

@@ -41,6 +41,15 @@ int run_build(int argc, char** argv) {
   app.add_option("--saturation", opt.colour.saturation, "default colour: saturation")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  app.add_option("--glow-strength", opt.colour.glow_strength,
+                 "default glow: strength (an additive blurred copy; real fire footage has "
+                 "little, and any glow fills the dark gaps between tongues)")
+      ->check(CLI::Range(0.0, 4.0))
+      ->capture_default_str();
+  app.add_option("--glow-radius", opt.colour.glow_radius,
+                 "default glow: radius, fraction of the image height")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   bool no_flames = false;
   app.add_flag("--no-learning-flames", no_flames,
                "EigenFires and motion graph only (no shape model, no ARP)");

@@ -1,5 +1,7 @@
 #include "dataset.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -34,7 +36,7 @@ void save_dataset(const Dataset& d, const std::string& dir) {
                       {"width", d.width},
                       {"height", d.height},
                       {"frames", d.frames()},
-                      {"intensity", "linear"},
+                      {"intensity", "srgb"},
                       {"clips", clips_to_json(d.clips)},
                       {"multi_plume", plumes},
                       {"options", d.options}};
@@ -61,6 +63,12 @@ int need_int(const std::string& file, const nlohmann::json& j, const std::string
   return it->get<int>();
 }
 }  // namespace
+
+uint8_t encode_srgb8(float linear) {
+  const float v = std::clamp(linear, 0.0f, 1.0f);
+  const float e = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+  return static_cast<uint8_t>(std::lround(e * 255.0f));
+}
 
 Dataset load_dataset(const std::string& dir) {
   const std::string mf = dir + "/manifest.json";
@@ -140,6 +148,16 @@ Dataset load_dataset(const std::string& dir) {
   std::ifstream fin(ff, std::ios::binary);
   fin.read(reinterpret_cast<char*>(d.pixels.data()), static_cast<std::streamsize>(want));
   if (!fin) throw ConfigError(ff, "", "read failed");
+  // Datasets made before intensities were display-encoded hold linear luma:
+  // encode them as ingest does now, so old and new datasets build alike.
+  const std::string intensity = m.value("intensity", "linear");
+  if (intensity == "linear") {
+    std::array<uint8_t, 256> lut;
+    for (int i = 0; i < 256; ++i) lut[i] = encode_srgb8(i / 255.0f);
+    for (uint8_t& p : d.pixels) p = lut[p];
+  } else if (intensity != "srgb") {
+    throw ConfigError(mf, "intensity", "expected \"srgb\" or \"linear\"");
+  }
   return d;
 }
 

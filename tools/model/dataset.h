@@ -2,8 +2,10 @@
 // from one or more clips, plus a manifest. On disk (a folder):
 //   manifest.json  width, height, frames, clips [{name, source, first, count,
 //                  fps, labels [{from, to, label}]}], multi_plume [frame...],
-//                  intensity "linear", ingest options
-//   frames.u8      frames x height x width bytes (linear luma, 0..255)
+//                  intensity "srgb", ingest options
+//   frames.u8      frames x height x width bytes: luma with the background
+//                  removed, sRGB-encoded 0..255 (as the footage and the screen
+//                  are; "linear" datasets of older tools are encoded on load)
 #pragma once
 
 #include <cstdint>
@@ -30,6 +32,8 @@ struct Dataset {
 };
 
 void save_dataset(const Dataset& d, const std::string& dir);
+// Linear 0..1 to an 8-bit sRGB-encoded value (how datasets store intensity).
+uint8_t encode_srgb8(float linear);
 // Validates the manifest and the frame file (ConfigError naming file and key).
 Dataset load_dataset(const std::string& dir);
 

@@ -351,8 +351,12 @@ Dataset ingest(const std::vector<SourceClip>& clips, const IngestOptions& opt,
               acc += sample(img, ox + (x + (sx + 0.5) / ss) / scale,
                             oy + (y + (sy + 0.5) / ss) / scale);
           acc /= static_cast<float>(ss * ss);
-          out[static_cast<size_t>(y) * d.width + x] =
-              static_cast<uint8_t>(std::lround(std::clamp(acc, 0.0f, 1.0f) * 255.0f));
+          // Background removal and resampling are done in linear light; the
+          // dataset stores display-encoded values, as the footage had them: the
+          // eigen-images then learn what a viewer sees (the eval scripts
+          // measure that too), the runtime shows gray as lightness without a
+          // further curve, and 8 bits keep the flame's dim edges.
+          out[static_cast<size_t>(y) * d.width + x] = encode_srgb8(acc);
         }
       d.multi_plume[next + f] =
           count_plumes(out, d.width, d.height, opt.plume_level, opt.plume_min_area) >= 2;

@@ -1,4 +1,4 @@
-// From footage to a dataset: gray linear luma, dark background removed, flame
+// From footage to a dataset: gray luma, dark background removed in linear light, flame
 // base found and aligned, cropped and resized to a common size, frames with
 // several disjoint plumes flagged.
 #pragma once

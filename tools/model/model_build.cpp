@@ -87,7 +87,7 @@ BuiltModel build_model(const Dataset& d, const BuildOptions& opt) {
                          {"height", h},
                          {"components", e},
                          {"frames", frames},
-                         {"intensity", "linear"},
+                         {"intensity", "srgb"},
                          {"total_variance", m.pca.total_variance},
                          {"clips", clips_to_json(d.clips)},
                          {"multi_plume",

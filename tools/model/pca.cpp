@@ -67,29 +67,23 @@ PcaResult pca_snapshot(const uint8_t* pixels, int width, int height, int frame_c
     }
   };
 
-  // Pass 1: Gram matrix G = Xc^T Xc (lower triangle), one accumulator per thread.
+  // Pass 1: Gram matrix G = Xc^T Xc (lower triangle). Each block's share is
+  // added in block order (`ordered`), so the sum, and the model, are the same
+  // bytes from run to run and on any number of threads.
   say("PCA: Gram matrix of " + std::to_string(n) + " frames x " + std::to_string(npx) + " pixels");
   Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(n, n);
 #pragma omp parallel
   {
-    Eigen::MatrixXf g = Eigen::MatrixXf::Zero(n, n), acc = Eigen::MatrixXf::Zero(n, n);
-    Eigen::MatrixXf blk;
-    int in_acc = 0;
-#pragma omp for schedule(dynamic, 4)
+    Eigen::MatrixXf g(n, n), blk;
+#pragma omp for ordered schedule(dynamic, 1)
     for (int b = 0; b < blocks; ++b) {
       const Eigen::Index p0 = static_cast<Eigen::Index>(b) * kBlock;
       fill(blk, r.train, p0, std::min<Eigen::Index>(kBlock, npx - p0));
+      g.setZero();
       g.selfadjointView<Eigen::Lower>().rankUpdate(blk.transpose());
-      // Fold into double now and then so float sums stay short.
-      if (++in_acc == 16) {
-        acc += g;
-        g.setZero();
-        in_acc = 0;
-      }
+#pragma omp ordered
+      gram += g.cast<double>();
     }
-    acc += g;
-#pragma omp critical
-    gram += acc.cast<double>();
   }
 
   say("PCA: eigen-decomposition of the " + std::to_string(n) + "x" + std::to_string(n) +
@@ -129,21 +123,21 @@ PcaResult pca_snapshot(const uint8_t* pixels, int width, int height, int frame_c
   r.frame_energy = Eigen::VectorXd::Zero(frame_count);
 #pragma omp parallel
   {
-    Eigen::MatrixXf blk, w = Eigen::MatrixXf::Zero(frame_count, e);
-    Eigen::VectorXd energy = Eigen::VectorXd::Zero(frame_count);
-#pragma omp for schedule(dynamic, 4)
+    Eigen::MatrixXf blk, w;
+    Eigen::VectorXd energy;
+#pragma omp for ordered schedule(dynamic, 1)
     for (int b = 0; b < blocks; ++b) {
       const Eigen::Index p0 = static_cast<Eigen::Index>(b) * kBlock;
       const Eigen::Index rows = std::min<Eigen::Index>(kBlock, npx - p0);
       fill(blk, all, p0, rows);
       r.basis.middleRows(p0, rows).noalias() = blk(Eigen::all, train_col) * proj;
-      w.noalias() += blk.transpose() * r.basis.middleRows(p0, rows);
-      energy += blk.colwise().squaredNorm().transpose().cast<double>();
-    }
-#pragma omp critical
-    {
-      r.weights += w;
-      r.frame_energy += energy;
+      w.noalias() = blk.transpose() * r.basis.middleRows(p0, rows);
+      energy = blk.colwise().squaredNorm().transpose().cast<double>();
+#pragma omp ordered
+      {  // in block order, as pass 1
+        r.weights += w;
+        r.frame_energy += energy;
+      }
     }
   }
   return r;

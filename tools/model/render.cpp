@@ -6,11 +6,6 @@
 namespace candela::tools {
 
 namespace {
-float linear_to_srgb(float v) {
-  v = std::clamp(v, 0.0f, 1.0f);
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
-
 float hls_channel(float m1, float m2, float h) {
   h = h - std::floor(h);
   if (h < 1.0f / 6) return m1 + (m2 - m1) * 6 * h;
@@ -56,7 +51,7 @@ Image gray_image(const float* gray, int width, int height) {
   img.channels = 1;
   img.pixels.resize(static_cast<size_t>(width) * height);
   for (size_t p = 0; p < img.pixels.size(); ++p)
-    img.pixels[p] = static_cast<uint8_t>(std::lround(255.0f * linear_to_srgb(gray[p] / 255.0f)));
+    img.pixels[p] = static_cast<uint8_t>(std::lround(std::clamp(gray[p], 0.0f, 255.0f)));
   return img;
 }
 
@@ -68,7 +63,7 @@ Image colourise(const float* gray, int width, int height, float hue_deg, float s
   for (size_t p = 0; p < n; ++p) {
     const float v =
         std::max(0.0f, gray[p] - black_level) / (255.0f - std::min(black_level, 254.0f));
-    const float l = linear_to_srgb(v);  // lightness on the display's scale
+    const float l = std::min(v, 1.0f);  // display-encoded gray is the lightness
     const float m2 = l <= 0.5f ? l * (1 + saturation) : l + saturation - l * saturation;
     const float m1 = 2 * l - m2;
     rgb[3 * p] = hls_channel(m1, m2, h + 1.0f / 3);

@@ -10,11 +10,12 @@
 
 namespace candela::tools {
 
-// gray: linear intensity 0..255 (values outside are clamped); values up to
-// black_level become black and the rest are stretched back over 0..255. Returns RGB.
+// gray: display-encoded intensity 0..255, as datasets store it (values outside
+// are clamped); values up to black_level become black and the rest are
+// stretched back over 0..255, as the runtime's ramp does. Returns RGB.
 Image colourise(const float* gray, int width, int height, float hue_deg, float saturation,
                 float glow_radius, float glow_strength, float black_level = 0);
-// Linear 0..255 to an 8-bit sRGB-encoded gray image.
+// Display-encoded 0..255 to an 8-bit gray image.
 Image gray_image(const float* gray, int width, int height);
 
 // A small RGB raster for plots.
