@@ -37,8 +37,9 @@ tests=(
   libcamera-tools udev
   # libFuzzer targets (tests/fuzz/run-fuzz.sh): clang and its fuzzer runtime
   clang libclang-rt-14-dev
-  # systemd-analyze security (ctest -L systemd), systemd-sysusers --dry-run (-L package)
-  systemd
+  # systemd-analyze security (ctest -L systemd), systemd-sysusers --dry-run (-L package);
+  # libseccomp for the unit's syscall filter applied by hand (-L systemd)
+  systemd python3-seccomp
 )
 
 want=("${runtime[@]}")
