@@ -14,7 +14,7 @@ line=$(grep -o 'Overall exposure level for [^:]*: [0-9.]*' <<<"$out") ||
   { echo "unit_exposure: no overall exposure line in systemd-analyze's output" >&2; exit 1; }
 echo "$line"
 for need in 'DeviceAllow=char-drm rw' 'DeviceAllow=char-gpiochip rw' 'DeviceAllow=char-video4linux rw' \
-  'DeviceAllow=char-input rw' 'RuntimeDirectory=candela' 'User=candela' \
+  'DeviceAllow=char-input rw' 'RuntimeDirectory=candela' 'User=candela' 'Type=notify' \
   'ExecStart=/usr/bin/candela --config /etc/candela/candela.toml $CANDELA_ARGS'; do
   grep -qxF "$need" "$unit" || { echo "unit_exposure: $unit lacks '$need'" >&2; exit 1; }
 done
