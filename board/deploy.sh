@@ -92,8 +92,13 @@ fi
 systemctl daemon-reload
 systemctl enable candela.service
 if [ $start -eq 1 ]; then
-  systemctl restart candela.service
-  echo "deploy: started; follow it with: journalctl -u candela -f"
+  # Type=notify: this waits for candela's first frame on the screen.
+  if systemctl restart candela.service; then
+    echo "deploy: started; follow it with: journalctl -u candela -f"
+  else
+    echo "deploy: warning: candela did not show a frame (no screen? a desktop holding it?);" \
+      "it stays enabled and retries; see: journalctl -u candela" >&2
+  fi
 else
   echo "deploy: enabled; it starts at the next boot"
 fi
