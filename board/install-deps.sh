@@ -23,6 +23,8 @@ build=(
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev zlib1g-dev
   libcamera-dev
+  # Debian packages (board/package.sh, ctest -L package): cpack + dpkg-shlibdeps, lintian
+  dpkg-dev lintian
 )
 tests=(
   ffmpeg python3 python3-numpy python3-scipy python3-pil imagemagick xvfb xauth
@@ -35,6 +37,9 @@ tests=(
   libcamera-tools udev
   # libFuzzer targets (tests/fuzz/run-fuzz.sh): clang and its fuzzer runtime
   clang libclang-rt-14-dev
+  # systemd-analyze security (ctest -L systemd), systemd-sysusers --dry-run (-L package);
+  # libseccomp for the unit's syscall filter applied by hand (-L systemd)
+  systemd python3-seccomp
 )
 
 want=("${runtime[@]}")

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <thread>
 
+#include "app/sd_notify.h"
 #include "core/clock.h"
 #include "input/input_hub.h"
 
@@ -68,6 +69,8 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
     }
     last_present = end;
     ++result.frames;
+    // Only here, after a present: a loop stuck anywhere stops the watchdog pings.
+    if (s.notify) s.notify->frame_presented(result.frames, end);
     if (self_paced) std::this_thread::sleep_until(begin + frame_period);
   }
   result.steps = clock.steps();

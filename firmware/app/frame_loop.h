@@ -14,11 +14,12 @@
 namespace candela {
 
 class InputHub;
+class SdNotify;
 
 struct LoopSettings {
   uint64_t max_frames = 0;  // 0: until quit
   int steps_per_second = 60;
-  int frames_per_second = 60;               // lockstep: steps per frame = steps_per_second / fps
+  int frames_per_second = 60;  // lockstep: steps per frame = steps_per_second / fps
   // Where nothing paces presentation (headless), hold frames_per_second by
   // wall clock and advance animation by wall time, like a live display
   // (for automation through the control socket). Off: lockstep, as fast as
@@ -27,6 +28,7 @@ struct LoopSettings {
   const std::atomic<bool>* stop = nullptr;  // set by a signal handler
   FrameStats* stats = nullptr;
   InputHub* inputs = nullptr;  // sensors, camera, control socket: drained once per frame
+  SdNotify* notify = nullptr;  // systemd READY/WATCHDOG/STATUS after presented frames
 };
 
 struct LoopResult {

@@ -10,6 +10,7 @@
 
 #include "app/frame_loop.h"
 #include "app/options.h"
+#include "app/sd_notify.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "display/display.h"
@@ -90,6 +91,8 @@ int main(int argc, char** argv) {
   }
   if (opt.display.refresh_hz == 0) opt.display.refresh_hz = desc.refresh_hz;
 
+  // Before any thread starts (it unsets the variables it reads).
+  SdNotify notify = SdNotify::from_environment(desc.file);
   try {
     auto display = open_display(opt.display);
     auto scene_ptr = std::make_unique<Scene>(desc, opt.seed, &g_stop);
@@ -118,8 +121,10 @@ int main(int argc, char** argv) {
     InputHub inputs(desc.inputs, desc.wind, opt.control);
     inputs.start();
     ls.inputs = &inputs;
+    ls.notify = &notify;
     const double cpu0 = process_cpu_seconds();
     const LoopResult r = run_frame_loop(*display, scene, ls);
+    notify.stopping();
     const double cpu = process_cpu_seconds() - cpu0;
     display->finish();
     if (g_stop) LOG_INFO("stopped by %s; outputs finished", signal_name(g_signal));

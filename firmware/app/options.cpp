@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <string>
 
+#include "app/config_file.h"
+#include "core/error.h"
 #include "input/gpio_line.h"
 
 namespace candela {
@@ -46,6 +48,9 @@ int parse_options(int argc, char** argv, Options& o) {
   // Not CLI::ExistingFile: the scene reader says what is wrong with the path
   // ("too many levels of symbolic links", "not a regular file (a FIFO)").
   app.add_option("--scene", o.scene, "Scene file (TOML); default: the built-in scene");
+  app.add_option("--config", o.config,
+                 "Kiosk settings (TOML: scene, display), e.g. /etc/candela/candela.toml; "
+                 "--scene, --test-pattern and --display on the command line win");
   app.add_flag("--test-pattern", o.test_pattern,
                "Show colour bars, a frame counter and a moving marker");
   app.add_flag("--check", o.check,
@@ -82,6 +87,17 @@ int parse_options(int argc, char** argv, Options& o) {
     return app.exit(e);
   }
   o.display.vsync = !no_vsync;
+  if (!o.config.empty()) {
+    KioskConfig c;
+    try {
+      c = load_config_file(o.config);
+    } catch (const ConfigError& e) {
+      std::fprintf(stderr, "candela: %s\n", e.what());
+      return 2;
+    }
+    if (o.scene.empty() && !o.test_pattern) o.scene = c.scene;
+    if (!c.display.empty() && app.count("--display") == 0) o.display.kind = c.display;
+  }
   if (!size.empty()) {
     const auto x = size.find('x');
     uint64_t w = 0, h = 0;

@@ -10,7 +10,8 @@ namespace candela {
 
 struct Options {
   DisplayOptions display;
-  std::string scene;  // empty: the built-in default scene
+  std::string scene;   // empty: the built-in default scene
+  std::string config;  // --config: the kiosk's settings file (app/config_file.h); empty: none
   bool test_pattern = false;
   bool check = false;
   bool bench = false;

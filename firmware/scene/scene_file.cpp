@@ -69,16 +69,19 @@ void check_nesting(std::string_view t, const std::string& name) {
 
 }  // namespace
 
-SceneDesc load_scene_text(std::string_view text, const std::string& name) {
+toml::table parse_toml_text(std::string_view text, const std::string& name) {
   check_nesting(text, name);
-  toml::table root;
   try {
-    root = toml::parse(text, name);
+    return toml::parse(text, name);
   } catch (const toml::parse_error& e) {
     std::ostringstream where;
     where << "line " << e.source().begin.line << ", column " << e.source().begin.column;
     throw ConfigError(name, where.str(), "TOML syntax error: " + std::string(e.description()));
   }
+}
+
+SceneDesc load_scene_text(std::string_view text, const std::string& name) {
+  const toml::table root = parse_toml_text(text, name);
   SceneDesc scene;
   scene.file = name;
   ParamReader top(&root, name, "");

@@ -3,8 +3,11 @@
 // and start-up report the same errors.
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gl/math.h"
@@ -47,6 +50,9 @@ inline constexpr unsigned kMaxElementCost = 64;  // sum of ElementSpec::cost()
 // regular file within the scene size limit (core/file_read.h).
 SceneDesc load_scene_file(const std::string& path);
 SceneDesc load_scene_text(std::string_view text, const std::string& name);
+// TOML text (a scene, the kiosk's config) parsed by toml++ after the nesting
+// check above; a syntax error is ConfigError(name, "line L, column C", ...).
+toml::table parse_toml_text(std::string_view text, const std::string& name);
 // Built-in scenes ("default", "test-pattern", ...): firmware/scenes/*.toml.
 SceneDesc load_builtin_scene(const std::string& name);
 

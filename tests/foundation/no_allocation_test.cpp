@@ -1,12 +1,19 @@
 // Once running, the frame loop must not allocate: count operator new calls
 // while a scene runs headless after warm-up.
 #include <gtest/gtest.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
 
 #include <atomic>
+#include <cstddef>
 #include <cstdlib>
+#include <cstring>
 #include <new>
+#include <string>
 
 #include "app/frame_loop.h"
+#include "app/sd_notify.h"
 #include "support/render_harness.h"
 
 namespace {
@@ -56,6 +63,53 @@ TEST(FrameLoop, NoHeapAllocationPerFrame) {
     EXPECT_EQ(r.frames, 120u);
     EXPECT_EQ(g_allocations.load(), 0) << "operator new called during the frame loop";
   }
+}
+
+// The systemd notifications (READY, a WATCHDOG ping every frame, STATUS)
+// come from the frame loop too: still no allocation, and a full receiver
+// queue (nobody reading) drops messages instead of blocking the loop.
+TEST(FrameLoop, NoHeapAllocationWithSystemdNotify) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "allocation counting needs the plain allocator";
+#endif
+  const std::string name = "candela-alloc-test-" + std::to_string(getpid());
+  const int rx = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  ASSERT_GE(rx, 0);
+  sockaddr_un a{};
+  a.sun_family = AF_UNIX;
+  std::memcpy(a.sun_path + 1, name.data(), name.size());  // abstract: no file left behind
+  ASSERT_EQ(bind(rx, reinterpret_cast<sockaddr*>(&a),
+                 static_cast<socklen_t>(offsetof(sockaddr_un, sun_path) + 1 + name.size())),
+            0);
+  setenv("NOTIFY_SOCKET", ("@" + name).c_str(), 1);
+  setenv("WATCHDOG_USEC", "2", 1);
+  DisplayOptions o;
+  o.kind = "headless";
+  o.width = 160;
+  o.height = 90;
+  auto display = open_display(o);
+  Scene scene(load_builtin_scene("default"));
+  LoopSettings s;
+  s.max_frames = 10;
+  run_frame_loop(*display, scene, s);
+  SdNotify notify = SdNotify::from_environment("default.toml");
+  ASSERT_TRUE(notify.enabled());
+  EXPECT_EQ(getenv("NOTIFY_SOCKET"), nullptr) << "children would inherit NOTIFY_SOCKET";
+  s.notify = &notify;
+  s.max_frames = 120;
+  g_allocations = 0;
+  g_counting = true;
+  const LoopResult r = run_frame_loop(*display, scene, s);
+  g_counting = false;
+  EXPECT_EQ(r.frames, 120u);
+  EXPECT_EQ(g_allocations.load(), 0) << "operator new called during the frame loop";
+  char buf[256];
+  const ssize_t n = recv(rx, buf, sizeof(buf) - 1, MSG_DONTWAIT);
+  ASSERT_GT(n, 0);
+  buf[n] = '\0';
+  EXPECT_EQ(std::string(buf).rfind("READY=1\nSTATUS=default.toml: frame 1 presented", 0), 0u)
+      << buf;
+  close(rx);
 }
 
 }  // namespace

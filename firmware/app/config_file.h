@@ -1,0 +1,20 @@
+// The kiosk's settings file, /etc/candela/candela.toml (`candela --config`):
+// which scene and which display. Read like a scene (core/file_read.h: a
+// regular file, at most the scene limit; nesting bounded) and validated key
+// by key: errors are ConfigError "file: key: expected ...".
+//   scene = "/usr/share/candela/scenes/default.toml"   # relative: to this file
+//   display = "drm"                                    # auto | drm | window | headless
+#pragma once
+
+#include <string>
+
+namespace candela {
+
+struct KioskConfig {
+  std::string scene;    // empty: the built-in default scene
+  std::string display;  // empty: not given (the command line's, or auto)
+};
+
+KioskConfig load_config_file(const std::string& path);
+
+}  // namespace candela
