@@ -16,6 +16,7 @@ uniform vec2 u_margin;     // glow margin, flame uv
 uniform float u_brightness;
 uniform float u_glow_strength;
 uniform vec3 u_glow_tint;
+uniform float u_edge_fade;  // share of the image's width (sides) and height (top) faded out
 in vec2 v_uv;  // over this flame's sprite region, top row first
 out vec4 o_colour;
 
@@ -28,6 +29,10 @@ void main() {
   vec3 c = vec3(0.0);
   if (q.x >= 0.0 && q.x <= 1.0 && q.y >= 0.0 && q.y <= 1.0) {
     float g = clamp(texture(u_gray, atlas_uv(vec2(textureSize(u_gray, 0)), u_gray_rect, q)).r, 0.0, 1.0);
+    // A flame that reaches the image's sides or top (a wide fire, footage that
+    // clipped it) would end on a straight line: fade it out there instead.
+    if (u_edge_fade > 0.0)
+      g *= smoothstep(0.0, u_edge_fade, min(min(q.x, 1.0 - q.x), q.y));
     c = texture(u_ramp, vec2(g * (255.0 / 256.0) + 0.5 / 256.0, 0.5)).rgb * u_brightness;
   }
   if (u_glow_strength > 0.0)

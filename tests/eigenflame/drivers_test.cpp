@@ -393,3 +393,43 @@ TEST(ArpProcess, DefaultModelKeepsItsTrainingSpectrum) {
 
 }  // namespace
 }  // namespace candela
+
+namespace {
+
+TEST(EigenPlayback, CrossfadeHoldsThenFades) {
+  using candela::fade;
+  using candela::Fixed;
+  const Fixed quarter = Fixed::from_ratio(1, 4), none{}, all = Fixed::from_int(1);
+  // Held as a video player shows footage: the frame itself until the next one.
+  for (double p : {0.0, 0.3, 0.74, 0.99}) EXPECT_EQ(fade(Fixed::from_double(p), none), 0.0f) << p;
+  // Blended all the way (the old playback): linear in the phase.
+  for (double p : {0.0, 0.3, 0.74, 0.99})
+    EXPECT_NEAR(fade(Fixed::from_double(p), all), p, 1e-4) << p;
+  // A quarter: held for three quarters of the interval, then fading in.
+  EXPECT_EQ(fade(Fixed::from_double(0.5), quarter), 0.0f);
+  EXPECT_EQ(fade(Fixed::from_double(0.75), quarter), 0.0f);
+  EXPECT_NEAR(fade(Fixed::from_double(0.875), quarter), 0.5, 1e-3);
+  EXPECT_NEAR(fade(Fixed::from_double(0.999), quarter), 1.0, 1e-2);
+}
+
+TEST(EigenColour, HlsRampKeepsTheGrayAsLuma) {
+  // What the footage (and the eval scripts, which measure gray) saw as gray g
+  // comes out as a colour of luma g: orange, red and yellow flames alike.
+  for (float hue : {10.0f, 26.0f, 40.0f}) {
+    const auto ramp = candela::hls_ramp(hue, 0.95f, 0);
+    int prev = -1;
+    for (int i = 0; i < 256; ++i) {
+      const uint8_t* c = &ramp[static_cast<size_t>(i) * 4];
+      const double luma = 0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2];
+      EXPECT_NEAR(luma, i, 1.5) << "hue " << hue << " gray " << i;
+      EXPECT_GE(luma, prev - 0.5) << "brighter gray, brighter colour";
+      prev = static_cast<int>(luma);
+    }
+    // Still coloured in the middle (the hue is kept), white at the top.
+    const uint8_t* mid = &ramp[128 * 4];
+    EXPECT_GT(mid[0] - mid[2], 100) << "hue " << hue;
+    EXPECT_EQ(ramp[255 * 4 + 2], 255);
+  }
+}
+
+}  // namespace

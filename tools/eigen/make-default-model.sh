@@ -1,18 +1,22 @@
 #!/bin/sh
 # Builds the runtime's built-in eigen-flame models from data the project makes
 # itself (no recorded footage is used):
-#   firmware/models/default.cmodel  a candle (also "builtin:candle"): the `wick`
-#       preset, calm, in a steady breeze to the right and one to the left;
-#   firmware/models/fire.cmodel     a log fire ("builtin:fire"): the `fire`
-#       preset, calm and in a breeze.
-# Both are 2-D simulations with MacCormack advection, vorticity confinement
-# and fuel burning to heat, rendered as a camera sees black-body radiance
-# (exposure, soft clip), then ingested and built with candela-tool. Seeds are
-# fixed and the solver is deterministic, so the same tools give the same models.
+#   firmware/models/default.cmodel  a candle (also "builtin:candle"), learnt
+#       from the runtime's own "candles" element (the noise-morphed still,
+#       which measures inside the real candles' range): 20 s calm, 20 s with
+#       breezes to the right, 20 s to the left (tools/eigen/candle-dataset/),
+#       rendered headless at 60 fps, then ingested and built;
+#   firmware/models/fire.cmodel     a log fire ("builtin:fire"): a 2-D
+#       simulation (`fire` preset: MacCormack advection, vorticity confinement,
+#       fuel burning to heat) rendered as a camera sees black-body radiance
+#       (exposure, soft clip), then ingested and built.
+# Seeds are fixed, the solver and the renders deterministic and the PCA sums
+# in a fixed order, so the same tools give the same models.
 #
 #   tools/eigen/make-default-model.sh [CANDELA_TOOL] [OUT_DIR] [WHICH]
 #   (defaults: build/tools/candela-tool/candela-tool, firmware/models, "candle fire")
-#   KEEP=DIR keeps the clips and datasets there (to look at them).
+#   CANDELA=PATH is the runtime that renders the candle clips
+#   (default: build/firmware/candela). KEEP=DIR keeps the clips and datasets there.
 set -eu
 here=$(cd "$(dirname "$0")/../.." && pwd)
 tool=${1:-$here/build/tools/candela-tool/candela-tool}
@@ -20,6 +24,11 @@ case $tool in /*) ;; */*) tool=$(pwd)/$tool ;; esac
 out=${2:-$here/firmware/models}
 which=${3:-candle fire}
 [ -x "$tool" ] || { echo "make-default-model: no candela-tool at $tool (build it first)" >&2; exit 1; }
+candela=${CANDELA:-$here/build/firmware/candela}
+case $candela in /*) ;; */*) candela=$(pwd)/$candela ;; esac
+case " $which " in *" candle "*)
+  [ -x "$candela" ] || { echo "make-default-model: no candela at $candela (build it first)" >&2; exit 1; } ;;
+esac
 if [ -n "${KEEP:-}" ]; then
   work=$KEEP
   mkdir -p "$work"
@@ -42,25 +51,27 @@ sim() {  # sim NAME PRESET SEED FRAMES WIND EXPOSURE
 for kind in $which; do
   case $kind in
   candle)
-    # 30 fps. Wind in cells/s (+ = to the right).
-    sim calm wick 11 300 0:0 1.5
-    sim breeze-right wick 12 150 0:40 1.5
-    sim breeze-left wick 13 150 0:-40 1.5
-    "$tool" ingest calm breeze-right breeze-left --out candle-dataset \
-      --width 64 --height 96 \
-      --label calm:0-300:calm --label breeze-right:0-150:wind-right --label breeze-left:0-150:wind-left
-    # 64 EigenFires (scenes choose how many to use), 8-bit images.
-    "$tool" build candle-dataset --out "$out/default.cmodel" --components 64 --bits 8 \
+    # 60 fps clips of the candles element; each its own seed.
+    seed=7
+    for clip in calm right left; do
+      seed=$((seed + 1))
+      mkdir -p "$clip"
+      "$candela" --display headless --size 256x256 --frames 1200 --seed $seed \
+        --scene "$here/tools/eigen/candle-dataset/$clip.toml" --out "$clip/" >/dev/null
+    done
+    "$tool" ingest calm right left --out candle-dataset --width 96 --height 144 --fps 60 \
+      --label calm:0-1200:calm --label right:0-1200:wind-right --label left:0-1200:wind-left
+    # 80 EigenFires (scenes choose how many to use), 8-bit images, no glow of its own.
+    "$tool" build candle-dataset --out "$out/default.cmodel" --components 80 --bits 8 \
       --holdout 0 --report candle-report --hue 28 --saturation 0.9
     ls -l "$out/default.cmodel"
     ;;
   fire)
     sim fire-calm fire 21 300 0:0 2.2
-    # One clip, no labels. Note: `build` of this dataset is not byte-identical
-    # from run to run (about 1.5% of the bytes differ; same statistics, same
-    # measured features): a builder issue, the clip and dataset are identical.
-    "$tool" ingest fire-calm --out fire-dataset --width 96 --height 112
-    "$tool" build fire-dataset --out "$out/fire.cmodel" --components 48 --bits 8 \
+    # One clip, no labels. 96 EigenFires at 128x160: a fire's tongues are
+    # fine detail, which the first few dozen components leave out.
+    "$tool" ingest fire-calm --out fire-dataset --width 128 --height 160
+    "$tool" build fire-dataset --out "$out/fire.cmodel" --components 96 --bits 8 \
       --holdout 0 --report fire-report --hue 26 --saturation 0.95
     ls -l "$out/fire.cmodel"
     ;;

@@ -235,8 +235,7 @@ LearningFlamesModel learn_flames(const Dataset& d, const LearningFlamesOptions& 
       }
     }
     if (seqs.empty())
-      throw std::invalid_argument(
-          "Learning Flames: no run of consecutive single-plume frames is long enough for the ARP");
+      throw NoFlameSequence("no run of consecutive single-plume frames is long enough for the ARP");
     ArpLearnOptions ao = o.arp;
     ao.progress = o.progress;
     m.dynamics = learn_arp(seqs, ao);

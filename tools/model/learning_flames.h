@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,12 @@ struct LearningFlamesModel {
   FlameShape shape_of(const Eigen::VectorXd& x) const;
   // Renders parameters x into a width x height gray image (0..255).
   void render(const Eigen::VectorXd& x, int width, int height, float* out) const;
+};
+
+// The dataset has single-plume frames, but no run of them long enough to
+// learn the dynamics from: `build` then leaves the Learning Flames part out.
+struct NoFlameSequence : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
 };
 
 LearningFlamesModel learn_flames(const Dataset& d, const LearningFlamesOptions& o);

@@ -71,9 +71,14 @@ BuiltModel build_model(const Dataset& d, const BuildOptions& opt) {
     LearningFlamesOptions lo = opt.flames;
     lo.holdout = m.holdout;
     lo.progress = opt.progress;
-    m.flames = learn_flames(d, lo);
-    m.has_flames = true;
-    compare_equal_parameters(d, m);
+    try {
+      m.flames = learn_flames(d, lo);
+      m.has_flames = true;
+      compare_equal_parameters(d, m);
+    } catch (const NoFlameSequence& e) {
+      // A fire is mostly several plumes at once: its model is EigenFires and the graph.
+      if (opt.progress) opt.progress(std::string("Learning Flames skipped: ") + e.what());
+    }
   } else if (opt.learning_flames && opt.progress) {
     opt.progress("Learning Flames skipped: only " + std::to_string(single) +
                  " single-plume frames");

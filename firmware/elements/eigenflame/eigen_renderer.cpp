@@ -285,8 +285,9 @@ EigenBatch::EigenBatch() {
          u("u_deform"),          u("u_sprite"), u("u_sprite_rect")};
   sprite_program_ = Program::from_library("fullscreen.vert", "eigenflame_sprite.frag");
   const auto v = [&](const char* n) { return sprite_program_.uniform(n); };
-  us_ = {v("u_gray"),   v("u_glow"),       v("u_ramp"),          v("u_gray_rect"), v("u_glow_rect"),
-         v("u_margin"), v("u_brightness"), v("u_glow_strength"), v("u_glow_tint")};
+  us_ = {v("u_gray"),      v("u_glow"),     v("u_ramp"),       v("u_gray_rect"),
+         v("u_glow_rect"), v("u_margin"),   v("u_brightness"), v("u_glow_strength"),
+         v("u_glow_tint"), v("u_edge_fade")};
 
   // The billboard grid: kGridColumns x kShapeRows cells over the glow-padded area.
   std::vector<float> verts;
@@ -435,6 +436,7 @@ void EigenBatch::prepare(uint64_t frame, int screen_w, int screen_h) {
     glUniform1f(us_.brightness, r->look_.brightness);
     glUniform1f(us_.glow_strength, r->look_.glow_strength);
     glUniform3f(us_.glow_tint, r->glow_tint_.x, r->glow_tint_.y, r->glow_tint_.z);
+    glUniform1f(us_.edge_fade, r->look_.edge_fade);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
   glActiveTexture(GL_TEXTURE0);
@@ -459,11 +461,27 @@ std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation, float bla
     if (t < 2.0 / 3) return p + (q - p) * (2.0 / 3 - t) * 6;
     return p;
   };
-  for (int i = 0; i < 256; ++i) {
-    const double l = lightness(i, black);
+  auto hls = [&](double l, double rgb[3]) {
     const double q = l < 0.5 ? l * (1 + s) : l + s - l * s, p = 2 * l - q;
-    const double rgb[3] = {channel(p, q, h + 1.0 / 3), channel(p, q, h),
-                           channel(p, q, h - 1.0 / 3)};
+    rgb[0] = channel(p, q, h + 1.0 / 3);
+    rgb[1] = channel(p, q, h);
+    rgb[2] = channel(p, q, h - 1.0 / 3);
+  };
+  for (int i = 0; i < 256; ++i) {
+    // The colour whose luma (ITU-R 601, on the encoded values, as the eval
+    // scripts and PIL measure gray) is the model's gray: colouring keeps the
+    // flame's brightness as the footage had it, so edges, tongues and the
+    // clipped core land where they were (HLS lightness alone would make an
+    // orange flame's luma up to a third darker than its gray). Luma rises
+    // with lightness, so bisect.
+    const double want = lightness(i, black);
+    double lo = 0, hi = 1, rgb[3];
+    for (int it = 0; it < 30; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      hls(mid, rgb);
+      (0.299 * rgb[0] + 0.587 * rgb[1] + 0.114 * rgb[2] < want ? lo : hi) = mid;
+    }
+    hls(hi, rgb);
     for (int c = 0; c < 3; ++c)
       r[static_cast<size_t>(i) * 4 + c] =
           static_cast<uint8_t>(std::lround(std::clamp(rgb[c], 0.0, 1.0) * 255));

@@ -69,6 +69,7 @@ struct FlameLookSettings {
   float brightness = 1.0f;
   float glow_radius = 0.12f;  // fraction of the flame image's height
   float glow_strength = 0.6f;
+  float edge_fade = 0.05f;  // sides and top faded over this share of the image
 };
 
 // The flame's pose and shape for one frame.
@@ -160,13 +161,16 @@ class EigenBatch {
     GLint source, map, step, taps, offset, weight, clamp_rect, mask;
   } ug_{};
   struct {
-    GLint gray, glow, ramp, gray_rect, glow_rect, margin, brightness, glow_strength, glow_tint;
+    GLint gray, glow, ramp, gray_rect, glow_rect, margin, brightness, glow_strength, glow_tint,
+        edge_fade;
   } us_{};
   FlameUniforms uf_{};
 };
 
-// The HLS colour ramp (gray as lightness, fixed hue and saturation), as the
-// EigenFires paper colours its flames. Gray at or below `black` (0..255) is
+// The HLS colour ramp (fixed hue and saturation), as the EigenFires paper
+// colours its flames, with each gray's lightness chosen so that the colour's
+// luma equals the gray (the paper takes gray as the lightness, which darkens
+// an orange flame's edges and core). Gray at or below `black` (0..255) is
 // black: it hides the faint reconstruction noise around the flame.
 std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation, float black = 0);
 // A transfer function through evenly spaced colour stops (at least two).

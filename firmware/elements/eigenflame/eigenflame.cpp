@@ -131,6 +131,7 @@ class EigenFlame final : public Element {
     look.brightness = s.brightness;
     look.glow_radius = s.has_glow_radius ? s.glow_radius : std::max(0.02f, m.colour.glow_radius);
     look.glow_strength = s.has_glow_strength ? s.glow_strength : m.colour.glow_strength;
+    look.edge_fade = s.edge_fade;
     const int e = s.components > 0 ? s.components : EigenReconstructor::kMaxComponents;
 
     if (s.driver == EigenDriver::kArp && m.has_learning_flames) {
@@ -183,6 +184,7 @@ class EigenFlame final : public Element {
     const Fixed per_step = fps_ * step.dt;
     if (player_) {
       player_->set_rate(per_step);
+      player_->set_crossfade(s_.crossfade);
       player_->step(lean_);
     } else if (arp_) {
       phase_ += per_step;
@@ -193,7 +195,7 @@ class EigenFlame final : public Element {
         std::copy(st.begin(), st.end(), next_.begin());
       }
       // The state shown between two model frames (display only: float is fine).
-      const float t = phase_.to_float();
+      const float t = fade(phase_, s_.crossfade);
       for (int i = 0; i < shape_->dim(); ++i) shown_[i] = prev_[i] + (next_[i] - prev_[i]) * t;
     }
   }
@@ -315,6 +317,8 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
                  ? StackLayout::kLayered
                  : StackLayout::kPacked;
   s.speed = r.fixed("speed", 1.0, 0.05, 8.0);
+  s.crossfade = r.fixed("crossfade", s.crossfade.to_double(), 0, 1);
+  s.edge_fade = static_cast<float>(r.number("edge_fade", s.edge_fade, 0, 0.5));
   s.has_hue = r.has("hue");
   s.hue = static_cast<float>(r.number("hue", s.hue, 0, 360));
   s.has_saturation = r.has("saturation");

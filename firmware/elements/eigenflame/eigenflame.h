@@ -14,12 +14,17 @@
 //   components = 0             # use the first N components (0: all the model has)
 //   layout = "packed"          # packed (4 per texel) | layered (1 per array layer)
 //   speed = 1.0                # playback speed (model frames at the model's fps)
+//   crossfade = 0.25           # share of each model frame spent fading into the next:
+//                              # 0 holds each frame as a video player does, 1 blends all the
+//                              # way (soft, ghosted tongues); a little hides the steps
 //   hue = 28                   # HLS colour: gray is the lightness (defaults: the model's)
 //   saturation = 0.9
 //   transfer = "#000000 #8a1800 #ff8020 #fff0c0"  # or a transfer function (even stops)
 //   brightness = 1.0
 //   glow_radius = 0.12         # fraction of the flame height (default: the model's)
 //   glow_strength = 0.6
+//   edge_fade = 0.05           # fade the flame out over this share of the image at its
+//                              # sides and top (where a wide fire or clipped footage ends)
 //   [element.graph]  max_stretch = 45  window = 1800  jump_chance = 0.08  steer_chance = 0.17
 //   [element.wind]   lean = 0.05  max_lean = 0.2  response = 2.0  bend = 0.15
 //   [element.embers] width = 0.6  depth = 0.25  colour = "#ff5010"  # a glowing bed under it
@@ -75,11 +80,13 @@ struct EigenFlameSettings {
   int components = 0;
   StackLayout layout = StackLayout::kPacked;
   Fixed speed = Fixed::from_int(1);
+  Fixed crossfade = Fixed::from_ratio(1, 4);
   bool has_hue = false, has_saturation = false, has_glow_radius = false, has_glow_strength = false;
   float hue = 28, saturation = 0.9f;
   std::vector<Vec3> transfer;  // non-empty: overrides HLS
   float brightness = 1.0f;
   float glow_radius = 0.12f, glow_strength = 0.6f;
+  float edge_fade = 0.05f;
   WalkSettings walk;
   Fixed wind_lean = Fixed::from_ratio(5, 100);   // target lean per m/s, image widths
   Fixed max_lean = Fixed::from_ratio(20, 100);   // image widths

@@ -162,6 +162,13 @@ int32_t GraphWalker::step(Fixed target) {
   return next;
 }
 
+float fade(Fixed phase, Fixed crossfade) {
+  // Hold the frame, then fade into the next over the last `crossfade` of the interval.
+  if (crossfade.raw <= 0) return 0.0f;
+  const float start = 1.0f - crossfade.to_float();
+  return std::clamp((phase.to_float() - start) / crossfade.to_float(), 0.0f, 1.0f);
+}
+
 GraphPlayer::GraphPlayer(GraphWalker walker, std::span<const float> weights, int components,
                          Fixed frames_per_step)
     : walker_(std::move(walker)),
@@ -205,7 +212,7 @@ void GraphPlayer::step(Fixed target_lean) {
     moved = true;
   }
   if (moved) refresh();
-  const float t = phase_.to_float();
+  const float t = fade(phase_, crossfade_);
   for (int k = 0; k < e_; ++k) out_[k] = a_[k] + (b_[k] - a_[k]) * t;
 }
 

@@ -87,6 +87,10 @@ class GraphWalker {
   uint64_t jumps_ = 0, steers_ = 0, refusals_ = 0;
 };
 
+// How far (0..1) a frame `phase` (0..1) into its interval has faded into the
+// next, when the last `crossfade` share of each interval is a fade.
+float fade(Fixed phase, Fixed crossfade);
+
 // Plays a walk at the model's frame rate on the fixed animation step and
 // blends its weights for drawing: keeps the last chosen frames and the next
 // two, low-passes across jumps and interpolates between frames.
@@ -97,6 +101,9 @@ class GraphPlayer {
   GraphPlayer(GraphWalker walker, std::span<const float> weights, int components,
               Fixed frames_per_step);
   void set_rate(Fixed frames_per_step) { per_step_ = frames_per_step; }
+  // Share of each frame interval spent fading into the next frame (0: hold
+  // each frame, 1: blend linearly from one frame to the next).
+  void set_crossfade(Fixed share) { crossfade_ = clamp(share, Fixed{}, Fixed::from_int(1)); }
   // One animation step; target_lean as for GraphWalker::step.
   void step(Fixed target_lean);
   // The weights to draw (components() of them).
@@ -114,6 +121,7 @@ class GraphPlayer {
   int e_;           // components used
   int stride_;      // components per frame in `weights_`
   Fixed per_step_;  // model frames per animation step
+  Fixed crossfade_ = Fixed::from_int(1);
   Fixed phase_;
   Fixed target_;
   std::array<int32_t, 4> ring_{};  // previous, shown, next, after next
