@@ -45,6 +45,10 @@ uniform float u_rise_growth; // displacement at the base, relative to the top's
 uniform float u_wobble;      // how much the noise also moves the lookup radius
 uniform int u_ramp_here;     // 1: colour here; 0: write the exposure for the composite
 uniform int u_slices;        // flame shading: camera-facing slabs sampled
+uniform vec3 u_tongue_scale;  // flame shading: unit space -> the tongue field's lattice (x, y)
+uniform vec3 u_tongue_offset; // its rise, wrapped where the noise repeats
+uniform vec3 u_tongue_gap;    // x: how deep gaps between tongues cut (0: none); y: their width;
+                              // z: the height above the base where they reach full depth
 
 float pf_turbulence(vec3 q) {
   vec3 b = q * u_noise_scale;
@@ -147,7 +151,17 @@ void main() {
       float turb = pf_turbulence(q) - u_turbulence_mean;
       float v = p.y + u_displacement * turb * mix(u_rise_growth, 1.0, clamp(p.y, 0.0, 1.0));
       vec4 c = textureLod(u_profile, vec2(r * (1.0 + u_wobble * turb), 1.0 - v), 0.0);
-      float sheet = clamp((c.a - u_sheet.x) / u_sheet.y, 0.0, 1.0);
+      float density = c.a;
+      if (u_tongue_gap.x > 0.0) {
+        // Gaps between tongues: the creases (|n| near 0) of one tall noise
+        // field, the same through the whole depth, so the slabs do not fill
+        // them in; they open from the base upwards and rise with the fire.
+        float n = abs(pf_snoise3_flow(vec3(q.x, q.y, 0.0) * u_tongue_scale - u_tongue_offset,
+                                      u_flow_cs[0]));
+        float depth = u_tongue_gap.x * smoothstep(max(u_obstacle, 0.0), max(u_obstacle, 0.0) + u_tongue_gap.z, p.y);
+        density *= 1.0 - depth * (1.0 - smoothstep(0.0, u_tongue_gap.y, n));
+      }
+      float sheet = clamp((density - u_sheet.x) / u_sheet.y, 0.0, 1.0);
       // Heat: the profile's straight colour (its luminance), hotter at the base.
       float heat = dot(c.rgb, vec3(0.299, 0.587, 0.114)) / max(c.a, 1.0 / 255.0);
       hot += sheet * heat * ds;

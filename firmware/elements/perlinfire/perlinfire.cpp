@@ -48,7 +48,8 @@ int64_t offset_period(FireNoise kind) {
 
 struct FireSettings {
   Vec3 size{0.4f, 0.7f, 0.4f};
-  Image profile;  // empty: the default, made at start-up
+  Image profile;                                     // empty: the default, made at start-up
+  double profile_width = 0.8, profile_taper = 0.65;  // the default profile's shape
   FireNoise noise = FireNoise::kFlow3d;
   int octaves = 4;
   double weight = 0.5, gain = 0.5;             // octave o weighs weight * gain^o
@@ -60,10 +61,15 @@ struct FireSettings {
   float intensity = 4.0f;
   FireShading shading = FireShading::kSheets;
   float sheet_edge = 0.3f, sheet_softness = 0.6f;  // density threshold of the flame sheets
-  float rise_growth = 0.1f;  // displacement at the base relative to the top's (sheets)
-  float wobble = 0.3f;       // radial share of the displacement (sheets)
-  double stretch = 1.0;      // noise cells are this much taller than wide
-  float breathing = 0.0f;    // how much the flame's height swells and falls (sheets)
+  float rise_growth = 0.1f;   // displacement at the base relative to the top's (sheets)
+  float wobble = 0.3f;        // radial share of the displacement (sheets)
+  double stretch = 1.0;       // noise cells are this much taller than wide
+  float breathing = 0.0f;     // how much the flame's height swells and falls (sheets)
+  double tongues = 3.0;       // tongue field cells per fire height across (sheets)
+  float tongue_gap = 0.0f;    // how deep the gaps between tongues cut (sheets; 0: none)
+  float tongue_width = 0.2f;  // how wide those gaps are (of the field's |noise|)
+  double tongue_stretch = 8;  // the tongue field's cells are this much taller than wide
+  float tongue_base = 0.45f;  // the height (of the volume) where the gaps reach full depth
   Vec3 color{1, 1, 1};
   bool additive = true;
   float obstacle = 0;  // fraction of the volume's height that is solid (logs, grate)
@@ -157,7 +163,9 @@ class PerlinFire final : public Element {
     grad3_ = make_table_texture(GL_RGBA8_SNORM, GL_RGBA, GL_BYTE, tables.grad3_rgba().data());
     grad4_ = make_table_texture(GL_RGBA8_SNORM, GL_RGBA, GL_BYTE, tables.grad4_rgba().data());
 
-    Image profile = s.profile.pixels.empty() ? make_default_fire_profile() : s.profile;
+    Image profile = s.profile.pixels.empty()
+                        ? make_default_fire_profile(64, 128, s.profile_width, s.profile_taper)
+                        : s.profile;
     bound_ = profile_bound(profile);
     // Premultiplied, so linear filtering does not bleed colour out of empty texels.
     for (size_t i = 0; i < profile.pixels.size(); i += 4)
@@ -272,6 +280,11 @@ class PerlinFire final : public Element {
     // Sheets sample slabs, not steps: a third as many (the quality ladder's
     // steps 20 -> 6 give 6 -> 2 slabs).
     glUniform1i(u_.slices, std::clamp(q.steps / 3, 2, 16));
+    const float tq = static_cast<float>(s_.tongues);
+    glUniform3f(u_.tongue_scale, ws.x * tq, ws.y * tq / static_cast<float>(s_.tongue_stretch),
+                0.0f);
+    glUniform3fv(u_.tongue_offset, 1, tongue_offset_.data());
+    glUniform3f(u_.tongue_gap, s_.tongue_gap, s_.tongue_width, s_.tongue_base);
     glUniform1f(u_.obstacle, s_.obstacle > 0 ? s_.obstacle : -1e9f);
     glUniform3f(u_.color, s_.color.x, s_.color.y, s_.color.z);
     bind_texture(0, perm_, u_.perm);
@@ -342,6 +355,9 @@ class PerlinFire final : public Element {
     u_.wobble = u("u_wobble");
     u_.ramp_here = u("u_ramp_here");
     u_.slices = u("u_slices");
+    u_.tongue_scale = u("u_tongue_scale");
+    u_.tongue_offset = u("u_tongue_offset");
+    u_.tongue_gap = u("u_tongue_gap");
     u_.composite_color = composite_.uniform("u_color");
     u_.image = composite_.uniform("u_image");
     u_.uv_per_pixel = composite_.uniform("u_uv_per_pixel");
@@ -437,13 +453,23 @@ class PerlinFire final : public Element {
       flow_cs_[i * 2 + 0] = static_cast<float>(std::cos(angle));
       flow_cs_[i * 2 + 1] = static_cast<float>(std::sin(angle));
     }
+    // The tongue field rises with the turbulence (its own lattice) and drifts with the wind.
+    const int64_t tongue_rise =
+        (t * Fixed::from_double(s_.tongues / s_.tongue_stretch).raw >> Fixed::kFracBits) *
+            s_.speed.raw >>
+        Fixed::kFracBits;
+    const double tongue_per_noise = s_.tongues / s_.frequency;
+    tongue_offset_[0] = static_cast<float>(
+        std::fmod(drift_x_.to_double() * tongue_per_noise, static_cast<double>(period_)));
+    tongue_offset_[1] = static_cast<float>((tongue_rise % wrap) * to_float);
+    tongue_offset_[2] = 17.0f;  // a slice of the field away from the turbulence's octave 0
   }
 
   struct Uniforms {
     GLint mvp, box_min, box_max, camera, world_scale, noise_scale, step_length, max_steps, bound,
         octaves, weights, offset, flow_cs, time4, lean, displacement, turbulence_mean, intensity,
         obstacle, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble, ramp_here, slices,
-        image, uv_per_pixel, composite_color;
+        tongue_scale, tongue_offset, tongue_gap, image, uv_per_pixel, composite_color;
   };
 
   FireSettings s_;
@@ -460,6 +486,7 @@ class PerlinFire final : public Element {
   std::array<float, kMaxOctaves> weights_{}, time4_{};
   std::array<float, kMaxOctaves * 3> offsets_{};
   std::array<float, kMaxOctaves * 2> flow_cs_{};
+  std::array<float, 3> tongue_offset_{};
   Flicker breath_;
   Fixed lean_x_, lean_z_, drift_x_, drift_z_, time_, breath_now_ = Fixed::from_int(1);
   bool uniforms_dirty_ = true;
@@ -481,6 +508,8 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
     r.fail("size", "expected three positive numbers [width, height, depth] in metres");
   const std::string profile = r.path("profile");
   if (!profile.empty()) s.profile = load_fire_profile(profile, r.file(), r.key_path("profile"));
+  s.profile_width = r.number("profile_width", s.profile_width, 0.1, 0.97);
+  s.profile_taper = r.number("profile_taper", s.profile_taper, 0.1, 2);
   const std::string noise =
       r.string("noise", "flow3d", {"simplex3d", "flow3d", "simplex4d", "perlin4d"});
   s.noise = noise == "simplex3d"   ? FireNoise::kSimplex3d
@@ -511,6 +540,11 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.wobble = static_cast<float>(r.number("wobble", s.wobble, 0, 2));
   s.stretch = r.number("stretch", s.stretch, 0.25, 8);
   s.breathing = static_cast<float>(r.number("breathing", s.breathing, 0, 2));
+  s.tongues = r.number("tongues", s.tongues, 0.1, 32);
+  s.tongue_gap = static_cast<float>(r.number("tongue_gap", s.tongue_gap, 0, 1));
+  s.tongue_width = static_cast<float>(r.number("tongue_width", s.tongue_width, 0.01, 1));
+  s.tongue_stretch = r.number("tongue_stretch", s.tongue_stretch, 0.25, 32);
+  s.tongue_base = static_cast<float>(r.number("tongue_base", s.tongue_base, 0.01, 1));
   s.speed = r.fixed("speed", s.speed.to_double(), 0, 10);
   s.frequency = r.number("frequency", s.frequency, 0.1, 32);
   s.flow_speed = r.fixed("flow_speed", s.flow_speed.to_double(), 0, 20);
