@@ -85,8 +85,9 @@ void main() {
   // down stops where it meets the top.
   if (u_camera.y + d.y * t_in < u_obstacle) discard;
   if (d.y < 0.0) t_out = min(t_out, (u_obstacle - u_camera.y) / d.y);
-  // Nothing is drawn above the profile's highest non-empty row (the noise only
-  // ever moves lookups upwards), nor outside the cone that bounds the profile,
+  // Nothing is drawn above u_bound.z (the profile's highest non-empty row;
+  // sheets: a quarter of the volume higher, where tongues that rise past the
+  // profile have faded out), nor outside the cone that bounds the profile,
   // widened and shifted by the lean: march only the part of the ray inside.
   if (d.y > 0.0) t_out = min(t_out, (u_bound.z - u_camera.y) / d.y);
   else if (u_camera.y + d.y * t_in > u_bound.z) t_in = max(t_in, (u_bound.z - u_camera.y) / d.y);
@@ -164,7 +165,8 @@ void main() {
         // all cells at once would make the whole fire pulse in step).
         float n = abs(pf_snoise3(vec3(q.x, q.y, 0.0) * u_tongue_scale - u_tongue_offset));
         float base = max(u_obstacle, 0.0);
-        float depth = u_tongue_gap.x * mix(u_tongue_roots, 1.0, smoothstep(base, base + u_tongue_gap.z, p.y));
+        float depth = u_tongue_gap.x *
+                      mix(u_tongue_roots, 1.0, smoothstep(base, base + u_tongue_gap.z, p.y));
         // Gaps widen upwards, so tongues taper to their tips.
         float w = u_tongue_gap.y * mix(0.6, 1.4, clamp(p.y, 0.0, 1.0));
         density *= 1.0 - depth * (1.0 - smoothstep(0.4 * w, w, n));
