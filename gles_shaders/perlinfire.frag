@@ -45,6 +45,12 @@ uniform float u_rise_growth; // displacement at the base, relative to the top's
 uniform float u_wobble;      // how much the noise also moves the lookup radius
 uniform int u_ramp_here;     // 1: colour here; 0: write the exposure for the composite
 uniform int u_slices;        // flame shading: camera-facing slabs sampled
+uniform vec3 u_tongue_scale;  // flame shading: unit space -> the tongue field's lattice (x, y)
+uniform vec3 u_tongue_offset; // its drift, rise and evolution, wrapped where the noise repeats
+uniform float u_tongue_roots; // how deep the gaps cut at the very base (separate roots)
+uniform float u_glow;        // flame shading: brightness of the glow around the flames
+uniform vec3 u_tongue_gap;    // x: how deep gaps between tongues cut (0: none); y: their width;
+                              // z: the height above the base where they reach full depth
 
 float pf_turbulence(vec3 q) {
   vec3 b = q * u_noise_scale;
@@ -79,8 +85,9 @@ void main() {
   // down stops where it meets the top.
   if (u_camera.y + d.y * t_in < u_obstacle) discard;
   if (d.y < 0.0) t_out = min(t_out, (u_obstacle - u_camera.y) / d.y);
-  // Nothing is drawn above the profile's highest non-empty row (the noise only
-  // ever moves lookups upwards), nor outside the cone that bounds the profile,
+  // Nothing is drawn above u_bound.z (the profile's highest non-empty row;
+  // sheets: a quarter of the volume higher, where tongues that rise past the
+  // profile have faded out), nor outside the cone that bounds the profile,
   // widened and shifted by the lean: march only the part of the ray inside.
   if (d.y > 0.0) t_out = min(t_out, (u_bound.z - u_camera.y) / d.y);
   else if (u_camera.y + d.y * t_in > u_bound.z) t_in = max(t_in, (u_bound.z - u_camera.y) / d.y);
@@ -127,6 +134,7 @@ void main() {
   vec2 facing = dot(u_camera.xz, u_camera.xz) > 1e-6 ? normalize(u_camera.xz) : vec2(0.0, 1.0);
   float along = dot(d.xz, facing);
   float hot = 0.0;
+  float glow = 0.0;  // path length through the flames' dim envelope (density below the sheets')
   if (abs(along) > 1e-5) {
     // Path length through one slab, in fire heights (capped for grazing rays).
     float slab = (u_world_scale.x + u_world_scale.z) * 0.5 / float(u_slices);
@@ -147,10 +155,27 @@ void main() {
       float turb = pf_turbulence(q) - u_turbulence_mean;
       float v = p.y + u_displacement * turb * mix(u_rise_growth, 1.0, clamp(p.y, 0.0, 1.0));
       vec4 c = textureLod(u_profile, vec2(r * (1.0 + u_wobble * turb), 1.0 - v), 0.0);
-      float sheet = clamp((c.a - u_sheet.x) / u_sheet.y, 0.0, 1.0);
+      // Tongues that rise past the profile fade out below the bound's top.
+      float density = c.a * (1.0 - smoothstep(u_bound.z - 0.2, u_bound.z, p.y));
+      if (u_tongue_gap.x > 0.0) {
+        // Gaps between tongues: the creases (|n| near 0) of one tall noise
+        // field, the same through the whole depth, so the slabs do not fill
+        // them in; they open from the base upwards and rise with the fire. The
+        // field evolves by moving through its third axis (no spin: spinning
+        // all cells at once would make the whole fire pulse in step).
+        float n = abs(pf_snoise3(vec3(q.x, q.y, 0.0) * u_tongue_scale - u_tongue_offset));
+        float base = max(u_obstacle, 0.0);
+        float depth = u_tongue_gap.x *
+                      mix(u_tongue_roots, 1.0, smoothstep(base, base + u_tongue_gap.z, p.y));
+        // Gaps widen upwards, so tongues taper to their tips.
+        float w = u_tongue_gap.y * mix(0.6, 1.4, clamp(p.y, 0.0, 1.0));
+        density *= 1.0 - depth * (1.0 - smoothstep(0.4 * w, w, n));
+      }
+      float sheet = clamp((density - u_sheet.x) / u_sheet.y, 0.0, 1.0);
       // Heat: the profile's straight colour (its luminance), hotter at the base.
       float heat = dot(c.rgb, vec3(0.299, 0.587, 0.114)) / max(c.a, 1.0 / 255.0);
       hot += sheet * heat * ds;
+      glow += smoothstep(0.0, u_sheet.x, c.a) * ds;
     }
   }
 #endif
@@ -159,6 +184,8 @@ void main() {
   o_color = vec4(acc.rgb * u_color, 1.0 - exp(-acc.a));
 #else
   float exposure = 1.0 - exp(-u_intensity * hot);
-  o_color = u_ramp_here == 1 ? fire_ramp(exposure, u_color) : vec4(exposure);
+  // The glow: the hot air and lit smoke around the flames, dim and soft.
+  float g = u_glow * (1.0 - exp(-6.0 * glow));
+  o_color = u_ramp_here == 1 ? fire_ramp(exposure, g, u_color) : vec4(exposure, g, 0.0, 0.0);
 #endif
 }

@@ -15,7 +15,7 @@ out vec4 o_color;
 void main() {
   vec4 t = textureLod(u_image, gl_FragCoord.xy * u_uv_per_pixel, 0.0);
 #if PF_SHADING == 1
-  o_color = fire_ramp(t.r, u_color);
+  o_color = fire_ramp(t.r, t.g, u_color);
 #else
   o_color = t;
 #endif

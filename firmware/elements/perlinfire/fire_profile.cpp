@@ -26,7 +26,8 @@ uint8_t to_byte(double v) {
 
 }  // namespace
 
-Image make_default_fire_profile(int width, int height) {
+Image make_default_fire_profile(int width, int height, double base_width, double taper,
+                                double tip) {
   Image img;
   img.width = width;
   img.height = height;
@@ -37,7 +38,7 @@ Image make_default_fire_profile(int width, int height) {
     const double v = 1.0 - (row + 0.5) / height;
     // Half-width of the flame at this height: a broad base narrowing to a tip
     // below the top of the volume, so displaced lookups find empty space.
-    const double half_width = 0.8 * std::pow(std::max(0.0, 1.0 - v / 0.92), 0.65);
+    const double half_width = base_width * std::pow(std::max(0.0, 1.0 - v / tip), taper);
     for (int col = 0; col < width; ++col) {
       const double r = (col + 0.5) / width;
       uint8_t* px = img.row(row) + col * 4;

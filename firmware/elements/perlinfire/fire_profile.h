@@ -13,7 +13,11 @@ namespace candela {
 
 // A flame: white-yellow core at the base, orange and red towards its rim and
 // tip, fading to nothing at the rim, at the top row and outside the tongue.
-Image make_default_fire_profile(int width = 64, int height = 128);
+// `base_width`: the flame's half-width at its base (1 = the rim); `taper`: how
+// its width falls towards the tip (smaller: flatter topped, a wall of flame);
+// `tip`: the tip's height (1 = the volume's top).
+Image make_default_fire_profile(int width = 64, int height = 128, double base_width = 0.8,
+                                double taper = 0.65, double tip = 0.92);
 
 // Reads a profile PNG as RGBA. Throws ConfigError naming the file and the key
 // when it cannot be used (too small; density not fading to zero at the rim).

@@ -49,6 +49,7 @@ int64_t offset_period(FireNoise kind) {
 struct FireSettings {
   Vec3 size{0.4f, 0.7f, 0.4f};
   Image profile;  // empty: the default, made at start-up
+  double profile_width = 0.8, profile_taper = 0.65, profile_height = 0.92;  // the default profile
   FireNoise noise = FireNoise::kFlow3d;
   int octaves = 4;
   double weight = 0.5, gain = 0.5;             // octave o weighs weight * gain^o
@@ -60,10 +61,17 @@ struct FireSettings {
   float intensity = 4.0f;
   FireShading shading = FireShading::kSheets;
   float sheet_edge = 0.3f, sheet_softness = 0.6f;  // density threshold of the flame sheets
-  float rise_growth = 0.1f;  // displacement at the base relative to the top's (sheets)
-  float wobble = 0.3f;       // radial share of the displacement (sheets)
-  double stretch = 1.0;      // noise cells are this much taller than wide
-  float breathing = 0.0f;    // how much the flame's height swells and falls (sheets)
+  float rise_growth = 0.1f;   // displacement at the base relative to the top's (sheets)
+  float wobble = 0.3f;        // radial share of the displacement (sheets)
+  double stretch = 1.0;       // noise cells are this much taller than wide
+  float breathing = 0.0f;     // how much the flame's height swells and falls (sheets)
+  double tongues = 3.0;       // tongue field cells per fire height across (sheets)
+  float tongue_gap = 0.0f;    // how deep the gaps between tongues cut (sheets; 0: none)
+  float tongue_width = 0.2f;  // how wide those gaps are (of the field's |noise|)
+  float tongue_roots = 0.0f;  // how deep the gaps cut at the base: 0 one bed, 1 separate roots
+  float glow = 0.0f;          // brightness of the soft glow around the flames (sheets)
+  double tongue_stretch = 8;  // the tongue field's cells are this much taller than wide
+  float tongue_base = 0.45f;  // the height (of the volume) where the gaps reach full depth
   Vec3 color{1, 1, 1};
   bool additive = true;
   float obstacle = 0;  // fraction of the volume's height that is solid (logs, grate)
@@ -157,7 +165,10 @@ class PerlinFire final : public Element {
     grad3_ = make_table_texture(GL_RGBA8_SNORM, GL_RGBA, GL_BYTE, tables.grad3_rgba().data());
     grad4_ = make_table_texture(GL_RGBA8_SNORM, GL_RGBA, GL_BYTE, tables.grad4_rgba().data());
 
-    Image profile = s.profile.pixels.empty() ? make_default_fire_profile() : s.profile;
+    Image profile =
+        s.profile.pixels.empty()
+            ? make_default_fire_profile(64, 128, s.profile_width, s.profile_taper, s.profile_height)
+            : s.profile;
     bound_ = profile_bound(profile);
     // Premultiplied, so linear filtering does not bleed colour out of empty texels.
     for (size_t i = 0; i < profile.pixels.size(); i += 4)
@@ -249,7 +260,6 @@ class PerlinFire final : public Element {
     glUniform1f(u_.step_length, std::max(ws.x, ws.z) / static_cast<float>(q.steps));
     glUniform1i(u_.max_steps, 2 * q.steps);
     const float lean_len = std::sqrt(lx * lx + lz * lz);
-    glUniform4f(u_.bound, 0.5f * (bound_.radius + lean_len), 0.5f * bound_.slope, bound_.top, 0.0f);
     glUniform1i(u_.octaves, std::min(q.octaves, kMaxOctaves));
     glUniform1fv(u_.weights, kMaxOctaves, weights_.data());
     glUniform3fv(u_.offset, kMaxOctaves, offsets_.data());
@@ -262,7 +272,14 @@ class PerlinFire final : public Element {
     for (int o = 0; o < std::min(q.octaves, kMaxOctaves); ++o)
       weight_sum += weights_[static_cast<size_t>(o)];
     const float breath = 1.0f + s_.breathing * (breath_now_.to_float() - 1.0f);
-    glUniform1f(u_.turbulence_mean, 0.22f * weight_sum * breath);
+    const float turbulence_mean = 0.22f * weight_sum * breath;
+    glUniform1f(u_.turbulence_mean, turbulence_mean);
+    // Where turbulence is below its mean the lookup moves down (sheets), so
+    // tongues may rise above the profile's top: up to a quarter of the
+    // volume's height more, fading out on the way (perlinfire.frag).
+    const float top =
+        s_.shading == FireShading::kSheets ? std::min(1.0f, bound_.top + 0.25f) : bound_.top;
+    glUniform4f(u_.bound, 0.5f * (bound_.radius + lean_len), 0.5f * bound_.slope, top, 0.0f);
     glUniform1f(u_.intensity, s_.intensity);
     glUniform2f(u_.sheet, s_.sheet_edge, s_.sheet_softness);
     glUniform1f(u_.rise_growth, s_.rise_growth);
@@ -272,6 +289,13 @@ class PerlinFire final : public Element {
     // Sheets sample slabs, not steps: a third as many (the quality ladder's
     // steps 20 -> 6 give 6 -> 2 slabs).
     glUniform1i(u_.slices, std::clamp(q.steps / 3, 2, 16));
+    const float tq = static_cast<float>(s_.tongues);
+    glUniform3f(u_.tongue_scale, ws.x * tq, ws.y * tq / static_cast<float>(s_.tongue_stretch),
+                0.0f);
+    glUniform3fv(u_.tongue_offset, 1, tongue_offset_.data());
+    glUniform1f(u_.glow, s_.glow);
+    glUniform1f(u_.tongue_roots, s_.tongue_roots);
+    glUniform3f(u_.tongue_gap, s_.tongue_gap, s_.tongue_width, s_.tongue_base);
     glUniform1f(u_.obstacle, s_.obstacle > 0 ? s_.obstacle : -1e9f);
     glUniform3f(u_.color, s_.color.x, s_.color.y, s_.color.z);
     bind_texture(0, perm_, u_.perm);
@@ -342,6 +366,11 @@ class PerlinFire final : public Element {
     u_.wobble = u("u_wobble");
     u_.ramp_here = u("u_ramp_here");
     u_.slices = u("u_slices");
+    u_.tongue_scale = u("u_tongue_scale");
+    u_.tongue_offset = u("u_tongue_offset");
+    u_.tongue_gap = u("u_tongue_gap");
+    u_.glow = u("u_glow");
+    u_.tongue_roots = u("u_tongue_roots");
     u_.composite_color = composite_.uniform("u_color");
     u_.image = composite_.uniform("u_image");
     u_.uv_per_pixel = composite_.uniform("u_uv_per_pixel");
@@ -437,13 +466,25 @@ class PerlinFire final : public Element {
       flow_cs_[i * 2 + 0] = static_cast<float>(std::cos(angle));
       flow_cs_[i * 2 + 1] = static_cast<float>(std::sin(angle));
     }
+    // The tongue field rises with the turbulence (its own lattice) and drifts with the wind.
+    const int64_t tongue_rise =
+        (t * Fixed::from_double(s_.tongues / s_.tongue_stretch).raw >> Fixed::kFracBits) *
+            s_.speed.raw >>
+        Fixed::kFracBits;
+    const double tongue_per_noise = s_.tongues / s_.frequency;
+    tongue_offset_[0] = static_cast<float>(
+        std::fmod(drift_x_.to_double() * tongue_per_noise, static_cast<double>(period_)));
+    tongue_offset_[1] = static_cast<float>((tongue_rise % wrap) * to_float);
+    // It evolves through its third axis as fast as it rises.
+    tongue_offset_[2] = static_cast<float>((tongue_rise % wrap) * to_float);
   }
 
   struct Uniforms {
     GLint mvp, box_min, box_max, camera, world_scale, noise_scale, step_length, max_steps, bound,
         octaves, weights, offset, flow_cs, time4, lean, displacement, turbulence_mean, intensity,
         obstacle, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble, ramp_here, slices,
-        image, uv_per_pixel, composite_color;
+        tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, image, uv_per_pixel,
+        composite_color;
   };
 
   FireSettings s_;
@@ -460,6 +501,7 @@ class PerlinFire final : public Element {
   std::array<float, kMaxOctaves> weights_{}, time4_{};
   std::array<float, kMaxOctaves * 3> offsets_{};
   std::array<float, kMaxOctaves * 2> flow_cs_{};
+  std::array<float, 3> tongue_offset_{};
   Flicker breath_;
   Fixed lean_x_, lean_z_, drift_x_, drift_z_, time_, breath_now_ = Fixed::from_int(1);
   bool uniforms_dirty_ = true;
@@ -479,30 +521,42 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.size = r.vec3("size", s.size);
   if (!(s.size.x > 0 && s.size.y > 0 && s.size.z > 0))
     r.fail("size", "expected three positive numbers [width, height, depth] in metres");
+  s.shading = r.string("shading", "sheets", {"sheets", "profile"}) == "sheets"
+                  ? FireShading::kSheets
+                  : FireShading::kProfile;
+  int octaves = 4;
+  double render_scale = 1.0;
+  if (s.shading == FireShading::kProfile) {  // the paper's soft look keeps its old defaults
+    s.intensity = 4.0f;
+  } else {
+    // Tuned against the real fire clips (../shared/eval): a broad, low bed of
+    // fire (the clips show a whole log bed, about as wide as the flames are
+    // tall) torn into a row of tongues with separate roots, tips that break
+    // off, a dim envelope around them, cores clipping to white; detail that
+    // decorrelates in about 26 ms.
+    s.profile_width = 0.97, s.profile_taper = 0.15, s.profile_height = 0.35;
+    s.tongues = 15, s.tongue_gap = 1.0f, s.tongue_width = 0.55f, s.tongue_stretch = 6;
+    s.tongue_base = 0.13f, s.tongue_roots = 0.3f, s.glow = 0.5f;
+    s.displacement = 2.8f, s.intensity = 22.0f, s.speed = Fixed::from_ratio(3, 2);
+    s.frequency = 7.0, s.stretch = 3.0, s.flow_speed = Fixed::from_int(4);
+    s.rise_growth = 0.1f, s.wobble = 0.3f, s.sheet_softness = 1.5f, s.breathing = 0.3f;
+    s.quality.steps = 12, octaves = 2, render_scale = 0.7;
+  }
   const std::string profile = r.path("profile");
   if (!profile.empty()) s.profile = load_fire_profile(profile, r.file(), r.key_path("profile"));
+  s.profile_width = r.number("profile_width", s.profile_width, 0.1, 0.97);
+  s.profile_taper = r.number("profile_taper", s.profile_taper, 0.1, 2);
+  s.profile_height = r.number("profile_height", s.profile_height, 0.1, 0.97);
   const std::string noise =
       r.string("noise", "flow3d", {"simplex3d", "flow3d", "simplex4d", "perlin4d"});
   s.noise = noise == "simplex3d"   ? FireNoise::kSimplex3d
             : noise == "flow3d"    ? FireNoise::kFlow3d
             : noise == "simplex4d" ? FireNoise::kSimplex4d
                                    : FireNoise::kPerlin4d;
-  s.quality.octaves = static_cast<int>(r.integer("octaves", 4, 1, kMaxOctaves));
+  s.quality.octaves = static_cast<int>(r.integer("octaves", octaves, 1, kMaxOctaves));
   s.weight = r.number("weight", s.weight, 0, 4);
   s.gain = r.number("gain", s.gain, 0, 1);
   s.evolve = r.fixed("evolve", s.evolve.to_double(), 0, 10);
-  s.shading = r.string("shading", "sheets", {"sheets", "profile"}) == "sheets"
-                  ? FireShading::kSheets
-                  : FireShading::kProfile;
-  if (s.shading == FireShading::kProfile) {  // the paper's soft look keeps its old defaults
-    s.intensity = 4.0f;
-  } else {
-    // Tuned against the real fire clips (../shared/eval): tall torn tongues
-    // that decorrelate in about 40 ms, breathing, cores clipping to white.
-    s.displacement = 3.4f, s.intensity = 11.0f, s.speed = Fixed::from_ratio(11, 10);
-    s.frequency = 7.0, s.stretch = 3.0, s.flow_speed = Fixed::from_int(4);
-    s.rise_growth = 0.1f, s.wobble = 0.3f, s.sheet_softness = 0.6f, s.breathing = 0.5f;
-  }
   s.displacement = static_cast<float>(r.number("displacement", s.displacement, 0, 4));
   s.intensity = static_cast<float>(r.number("intensity", s.intensity, 0, 100));
   s.sheet_edge = static_cast<float>(r.number("sheet_edge", s.sheet_edge, 0.01, 0.99));
@@ -511,6 +565,13 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.wobble = static_cast<float>(r.number("wobble", s.wobble, 0, 2));
   s.stretch = r.number("stretch", s.stretch, 0.25, 8);
   s.breathing = static_cast<float>(r.number("breathing", s.breathing, 0, 2));
+  s.tongues = r.number("tongues", s.tongues, 0.1, 32);
+  s.tongue_gap = static_cast<float>(r.number("tongue_gap", s.tongue_gap, 0, 1));
+  s.tongue_width = static_cast<float>(r.number("tongue_width", s.tongue_width, 0.01, 1));
+  s.glow = static_cast<float>(r.number("glow", s.glow, 0, 1));
+  s.tongue_roots = static_cast<float>(r.number("tongue_roots", s.tongue_roots, 0, 1));
+  s.tongue_stretch = r.number("tongue_stretch", s.tongue_stretch, 0.25, 32);
+  s.tongue_base = static_cast<float>(r.number("tongue_base", s.tongue_base, 0.01, 1));
   s.speed = r.fixed("speed", s.speed.to_double(), 0, 10);
   s.frequency = r.number("frequency", s.frequency, 0.1, 32);
   s.flow_speed = r.fixed("flow_speed", s.flow_speed.to_double(), 0, 20);
@@ -521,7 +582,7 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.max_lean = r.fixed("max_lean", s.max_lean.to_double(), 0, 2);
   s.wind_drift = r.fixed("wind_drift", s.wind_drift.to_double(), 0, 4);
   s.quality.steps = static_cast<int>(r.integer("steps", s.quality.steps, 2, 256));
-  s.quality.scale = static_cast<float>(r.number("render_scale", 1.0, 0.1, 1.0));
+  s.quality.scale = static_cast<float>(r.number("render_scale", render_scale, 0.1, 1.0));
   s.auto_quality = r.string("quality", "fixed", {"fixed", "auto"}) == "auto";
   s.target_fps = r.number("target_fps", s.target_fps, 1, 10000);
   s.min_scale = static_cast<float>(r.number("min_render_scale", s.min_scale, 0.1, 1.0));
