@@ -95,6 +95,7 @@ int run_build(int argc, char** argv) {
   std::printf("%s: %d EigenFires of %dx%d over %d frames (%.2f%% of the variance)\n", out.c_str(),
               m.pca.components(), d.width, d.height, d.frames(),
               100.0 * m.pca.variance.head(m.pca.components()).sum() / m.pca.total_variance);
+  std::printf("black level %.1f (the reconstruction's haze over the background)\n", m.black_level);
   std::printf("   E   train dB  held-out dB\n");
   for (const auto& r : m.psnr)
     std::printf("%4d   %7.2f   %7.2f\n", r.components, r.train_db, r.holdout_db);

@@ -84,6 +84,32 @@ BuiltModel build_model(const Dataset& d, const BuildOptions& opt) {
                  " single-plume frames");
   }
   const size_t px = d.frame_pixels();
+  // The black level: the runtime shows reconstructed gray at or below it as
+  // black. Truncated PCA leaves a faint haze of positive values where no frame
+  // has any flame, which would show as the model image's rectangle on a dark
+  // screen: lift the level to the haze there (99.5th percentile over every
+  // 4th frame, at the pixels black in all of them), at most to 24.
+  float black_level = opt.colour.black_level;
+  {
+    std::vector<uint8_t> never(px, 1);
+    for (int f = 0; f < frames; f += 4) {
+      const uint8_t* src = d.frame(f);
+      for (size_t p = 0; p < px; ++p) never[p] &= src[p] == 0;
+    }
+    std::vector<float> haze;
+    Eigen::VectorXf rec;
+    for (int f = 0; f < frames; f += 4) {
+      rec = m.pca.mean + m.pca.basis * m.pca.weights.row(f).transpose();
+      for (size_t p = 0; p < px; ++p)
+        if (never[p]) haze.push_back(rec[static_cast<Eigen::Index>(p)]);
+    }
+    if (!haze.empty()) {
+      const size_t at = haze.size() * 995 / 1000;
+      std::nth_element(haze.begin(), haze.begin() + static_cast<ptrdiff_t>(at), haze.end());
+      black_level = std::clamp(haze[at] + 1.0f, black_level, 24.0f);
+    }
+    m.black_level = black_level;
+  }
   model::ModelWriter& mw = m.writer;
   nlohmann::json sources = nlohmann::json::array();
   for (const auto& c : d.clips) sources.push_back(c.source);
@@ -112,7 +138,7 @@ BuiltModel build_model(const Dataset& d, const BuildOptions& opt) {
                            {"saturation", opt.colour.saturation},
                            {"glow_radius", opt.colour.glow_radius},
                            {"glow_strength", opt.colour.glow_strength},
-                           {"black_level", opt.colour.black_level}}},
+                           {"black_level", black_level}}},
                          {"psnr",
                           [&] {
                             nlohmann::json a = nlohmann::json::array();

@@ -42,6 +42,7 @@ struct BuiltModel {
   // plain EigenFires versus the shape-normalised Learning Flames model.
   double plain_equal_db = 0, flames_equal_db = 0;
   int equal_params = 0;
+  float black_level = 0;  // written to the model's colour (see build_model)
 };
 
 BuiltModel build_model(const Dataset& d, const BuildOptions& opt);
