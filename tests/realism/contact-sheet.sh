@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # contact-sheet.sh [OUT.png]: one picture for people. Renders each built-in
 # flame with the eval scenes (../shared/eval/scenes: one flame, close, on black;
+# the eigen-flames with tests/realism/scenes/, which frame the whole model image;
 # 256x256, $FRAMES frames at 60 fps, the seeds of ../shared/eval/README.md) and
 # puts, one row per scene, four of its frames (1, 4, 7 and 10 s in) beside the
 # first frames of the real clips of its kind (candles for the candle scenes,
@@ -26,13 +27,14 @@ fires="campfire_night_arvideo fireplace_logs_grpatter fireplace_logs_meditation"
 # scene seed kind
 rows="a_candle_calm 1 candle
 b_candle_breeze 1 candle
-c_eigen_graph 5 fire
-d_eigen_arp 5 fire
+$here/scenes/eigen_candle.toml 5 candle
+$here/scenes/eigen_fire.toml 5 fire
 e_perlinfire 3 fire"
 
 tiles=()
 while read -r name seed kind; do
   scene=$(scene_file "$name") || exit 2
+  name=$(basename "$name" .toml)
   echo "rendering $name (seed $seed, $frames frames)" >&2
   render "$scene" "$seed" "$work/$name"
   shots=$(ls "$work/$name" | grep -i '\.png$' | sort)
