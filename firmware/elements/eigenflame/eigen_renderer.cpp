@@ -199,8 +199,9 @@ EigenRenderer::EigenRenderer(const ImageStack& mean, const ImageStack& eigen, St
       ++taps_;
     }
   }
-  // The glow's colour: twice the ramp's colour at half lightness (where HLS
-  // reaches the pure hue), so a dim glow matches the coloured flame.
+  // The glow's colour: twice the ramp's colour at mid gray, so a dim glow
+  // matches the coloured flame. (The HLS ramp now keeps luma, so its mid gray
+  // is a little lighter and less saturated than the pure hue was.)
   glow_tint_ = {look_.ramp[128 * 4] * (2.0f / 255), look_.ramp[128 * 4 + 1] * (2.0f / 255),
                 look_.ramp[128 * 4 + 2] * (2.0f / 255)};
   margin_x_ = look_.glow_strength > 0 ? static_cast<float>(radius_) / half_w : 0.0f;
