@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -178,6 +179,48 @@ TEST(SimulateCommand, ShortFormWritesAConsistentClip) {
     EXPECT_NEAR(img.at(bx, by), 255.0 * std::min(s, 1.0), 1.0) << "frame " << k;
   }
   EXPECT_FALSE(fs::exists(frame_path(d.string(), 4)));
+}
+
+// --slices: independent simulations side by side on one wider canvas; each
+// slice its own seed, so the fire's parts differ from each other.
+TEST(SimulateCommand, SlicesMakeOneWiderPictureOfDifferentFires) {
+  const fs::path d = scratch("slices") / "clip";
+  std::string out;
+  const int rc = run(std::string(CANDELA_TOOL_EXE) +
+                         " simulate -q --preset tongues --grid 48x128 --frames 2 --warmup 0.6 "
+                         "--render radiance --exposure 3 --soot 70 --no-fields --slices 3 "
+                         "--slice-spacing 1 --out " +
+                         d.string(),
+                     out);
+  ASSERT_EQ(rc, 0) << out;
+  const SimManifest m = read_manifest(d.string());
+  EXPECT_EQ(m.width, 144) << "48 px slices, centres one slice width apart";
+  EXPECT_EQ(m.height, 128);
+  const Image img = read_png(frame_path(d.string(), 1));
+  ASSERT_EQ(img.width, 144);
+  // Each third of the canvas holds flame, and no two thirds are the same
+  // picture (nor mirror images: slices may be mirrored).
+  double lit[3] = {0, 0, 0};
+  for (int y = 0; y < 128; ++y)
+    for (int x = 0; x < 144; ++x) lit[x / 48] += img.at(x, y);
+  for (double l : lit) EXPECT_GT(l, 128 * 48 * 2.0) << "a slice with no flame";
+  auto diff = [&](int a, int b, bool mirror) {
+    double s = 0;
+    for (int y = 0; y < 128; ++y)
+      for (int x = 8; x < 40; ++x)
+        s += std::abs(img.at(a * 48 + x, y) - img.at(b * 48 + (mirror ? 47 - x : x), y));
+    return s / (128 * 32);
+  };
+  for (int a = 0; a < 3; ++a)
+    for (int b = a + 1; b < 3; ++b) {
+      EXPECT_GT(diff(a, b, false), 2.0) << a << " and " << b;
+      EXPECT_GT(diff(a, b, true), 2.0) << a << " and " << b << " mirrored";
+    }
+  EXPECT_EQ(run(std::string(CANDELA_TOOL_EXE) + " simulate --slices 3 --render radiance --out " +
+                    (scratch("slices") / "f").string(),
+                out),
+            2);
+  EXPECT_NE(out.find("--no-fields"), std::string::npos) << out;
 }
 
 TEST(SimulateCommand, BadOptionsFailWithAClearMessage) {

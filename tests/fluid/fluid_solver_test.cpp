@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "colour_map.h"
+#include "fuel_bed.h"
 #include "pressure_solver.h"
 
 namespace candela::fluid {
@@ -375,6 +377,89 @@ TEST(Radiance, CrispEdgeAndClippedCore) {
   EXPECT_NEAR(soft_clip(0.7 - 1e-9, 0.7), soft_clip(0.7 + 1e-9, 0.7), 1e-6);
   EXPECT_LT(soft_clip(3.0, 0.7), 1.0);
   EXPECT_GT(soft_clip(3.0, 0.7), 0.95);
+}
+
+// A slice placed 1:1 at the canvas's corner is render_radiance's picture
+// (same light, same clip); mirrored and shifted it lands where it is told.
+TEST(Radiance, SliceOnACanvasIsTheSameLight) {
+  const double amb = 300.0, tref = 1900.0;
+  Grid2 t(12, 10, amb), fuel(12, 10, 40.0);
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 12; ++i) t.at(i, j) = amb + 130.0 * i + 20.0 * j;
+  Camera cam;
+  cam.exposure = 2.5;
+  cam.knee = 0.8;
+  cam.soot = 30.0;
+  const Image ref = render_radiance(t, amb, tref, ColourMode::kGray, cam, 1, &fuel);
+  std::vector<float> canvas;
+  SlicePlacement at;
+  add_radiance(t, &fuel, amb, tref, cam, at, 12, 10, canvas);
+  const Image got = finish_radiance(canvas, 12, 10, cam);
+  ASSERT_EQ(got.pixels.size(), ref.pixels.size());
+  for (size_t i = 0; i < ref.pixels.size(); ++i)
+    ASSERT_NEAR(got.pixels[i], ref.pixels[i], 1) << "pixel " << i;
+  // Mirrored, 5 px to the right, 2 rows up on a 20x12 canvas.
+  std::vector<float> wide;
+  at.left = 5.0;
+  at.bottom = 2.0;
+  at.mirror = true;
+  add_radiance(t, &fuel, amb, tref, cam, at, 20, 12, wide);
+  const Image m = finish_radiance(wide, 20, 12, cam);
+  for (int y = 0; y < 10; ++y)
+    for (int x = 0; x < 12; ++x) ASSERT_NEAR(m.at(5 + 11 - x, y), ref.at(x, y), 1) << x << "," << y;
+  for (int y = 0; y < 12; ++y) EXPECT_EQ(m.at(2, y), 0) << "outside the slice stays dark";
+  EXPECT_EQ(m.at(10, 11), 0) << "below the raised slice stays dark";
+  // Light adds: the same slice twice is twice the exposure.
+  add_radiance(t, &fuel, amb, tref, cam, SlicePlacement{}, 12, 10, canvas);
+  Camera twice = cam;
+  twice.exposure = 5.0;
+  const Image two = render_radiance(t, amb, tref, ColourMode::kGray, twice, 1, &fuel);
+  const Image sum = finish_radiance(canvas, 12, 10, cam);
+  for (size_t i = 0; i < two.pixels.size(); ++i) ASSERT_NEAR(sum.pixels[i], two.pixels[i], 1);
+}
+
+// The fuel bed: the front log hides the flames behind it and is lit by them;
+// flames add over the logs behind; charred wood glows in cracks that pulse;
+// coals glow only under the logs.
+TEST(FuelBed, FrontLogHidesFlamesLogsBehindShowThrough) {
+  const int w = 160, h = 120;
+  const FuelBed bed = hearth_fuel_bed(w, h, 7);
+  ASSERT_EQ(bed.logs.size(), 3u);
+  const Log& front = bed.logs[2];
+  ASSERT_TRUE(front.in_front);
+  // Flames: a bright band over the whole lower half.
+  std::vector<float> flames(static_cast<size_t>(w) * h, 0.0f);
+  for (int y = h / 2; y < h; ++y)
+    for (int x = 0; x < w; ++x) flames[static_cast<size_t>(y) * w + x] = 0.8f;
+  std::vector<float> lit = flames, dark(static_cast<size_t>(w) * h, 0.0f);
+  draw_fuel_bed(bed, 1.0, w, h, lit);
+  draw_fuel_bed(bed, 1.0, w, h, dark);
+  auto at = [&](const std::vector<float>& c, double x, double y) {
+    return c[static_cast<size_t>(y) * w + static_cast<size_t>(x)];
+  };
+  const double fx = 0.5 * (front.x0 + front.x1), fy = 0.5 * (front.y0 + front.y1);
+  // The front log's middle is wood, not flame: far below the flames' 0.8.
+  EXPECT_LT(at(lit, fx, fy), 0.3f);
+  // Its top faces the flames and is lit by them; unlit it is darker.
+  const double top = fy - 0.7 * front.radius;
+  EXPECT_GT(at(lit, fx, top), at(dark, fx, top) + 0.01f);
+  EXPECT_GT(at(lit, fx, top), at(lit, fx, fy + 0.7 * front.radius));
+  // A log behind: the flames' light adds over it.
+  const Log& back = bed.logs[0];
+  const double bx = 0.5 * (back.x0 + back.x1), by = 0.5 * (back.y0 + back.y1);
+  if (by >= h / 2) EXPECT_GE(at(lit, bx, by), 0.8f);
+  // Above the logs and coals nothing is drawn.
+  EXPECT_EQ(at(dark, w / 2, 5), 0.0f);
+  // Char glows in cracks, somewhere on the logs, and the glow changes in time.
+  std::vector<float> later(static_cast<size_t>(w) * h, 0.0f);
+  draw_fuel_bed(bed, 4.0, w, h, later);
+  double peak = 0.0, change = 0.0;
+  for (size_t i = 0; i < dark.size(); ++i) {
+    peak = std::max(peak, static_cast<double>(dark[i]));
+    change += std::fabs(dark[i] - later[i]);
+  }
+  EXPECT_GT(peak, 0.1) << "glowing cracks or coals";
+  EXPECT_GT(change / dark.size(), 1e-4) << "the glow pulses";
 }
 
 TEST(FluidSolver, RejectsBadParametersByName) {

@@ -33,9 +33,11 @@ int run_simulate(int argc, char** argv) {
   FluidParams base;
   app.add_option("--out,-o", out, "folder to write the clip to")->required();
   app.add_option("--frames,-n", frames, "frames to write")->capture_default_str();
-  app.add_option("--preset", preset,
-                 "starting parameters: candle (96x160) or fireplace (192x128) (coarse), fire "
-                 "(192x288, logs) or wick (128x256, a candle flame) (MacCormack, combustion)")
+  app.add_option(
+         "--preset", preset,
+         "starting parameters: candle (96x160) or fireplace (192x128) (coarse), fire "
+         "(192x288, logs), tongues (96x256, a stretch of log, for --slices) or wick (128x256, a "
+         "candle flame) (MacCormack, combustion)")
       ->capture_default_str();
   app.add_option("--grid", grid, "grid size WxH in cells (8..2048 each), e.g. 128x128");
   app.add_option("--fps", fps, "frames per second of the clip")->capture_default_str();
@@ -84,6 +86,17 @@ int run_simulate(int argc, char** argv) {
                  "hot gas glows")
       ->capture_default_str();
   app.add_option("--scale", scale, "image pixels per cell (1..16)")->capture_default_str();
+  int slices = 1;
+  double slice_spacing = 0.5;
+  app.add_option("--slices", slices,
+                 "independent simulations side by side and in depth on one canvas (gray "
+                 "radiance, --no-fields)")
+      ->capture_default_str();
+  bool fuel_bed = false;
+  app.add_flag("--fuel-bed", fuel_bed,
+               "logs and glowing coals around the flames (on the canvas of --slices)");
+  app.add_option("--slice-spacing", slice_spacing, "distance between slice centres, slice widths")
+      ->capture_default_str();
   app.add_option(
       "--t-reference", t_reference,
       "temperature shown as full brightness, K (default: hottest cell after the warm-up)");
@@ -144,6 +157,9 @@ int run_simulate(int argc, char** argv) {
     opt.substeps = substeps;
     opt.warmup = warmup;
     opt.scale = scale;
+    opt.slices = slices;
+    opt.slice_spacing = slice_spacing;
+    opt.fuel_bed = fuel_bed;
     opt.t_reference = t_reference;
     opt.write_fields = !no_fields;
     opt.out_dir = out;

@@ -95,6 +95,49 @@ Image render_radiance(const Grid2& t, double t_ambient, double t_reference, Colo
   return img;
 }
 
+void add_radiance(const Grid2& t, const Grid2* fuel, double t_ambient, double t_reference,
+                  const Camera& cam, const SlicePlacement& at, int canvas_width, int canvas_height,
+                  std::vector<float>& canvas) {
+  canvas.resize(static_cast<size_t>(canvas_width) * canvas_height, 0.0f);
+  const bool soot = fuel && cam.soot > 0.0 && fuel->width == t.width && fuel->height == t.height;
+  const double step = 10.0, lo = t_ambient;
+  const double y_ref = black_body_luminance(t_reference);
+  std::vector<double> lum;
+  for (double k = lo; k <= 2.0 * t_reference + step; k += step)
+    lum.push_back(black_body_luminance(k) / y_ref);
+  // Only the canvas pixels the grid covers.
+  const int x0 = std::max(0, static_cast<int>(std::floor(at.left)));
+  const int x1 = std::min(canvas_width, static_cast<int>(std::ceil(at.left + t.width * at.scale)));
+  const int y1 = std::min(canvas_height, static_cast<int>(std::ceil(canvas_height - at.bottom)));
+  const int y0 = std::max(0, static_cast<int>(std::floor(y1 - t.height * at.scale)));
+  for (int y = y0; y < y1; ++y) {
+    float* row = canvas.data() + static_cast<size_t>(y) * canvas_width;
+    const double gy = (canvas_height - 1 - y - at.bottom + 0.5) / at.scale - 0.5;
+    if (gy < -0.5 || gy > t.height - 0.5) continue;
+    for (int x = x0; x < x1; ++x) {
+      double gx = (x + 0.5 - at.left) / at.scale - 0.5;
+      if (at.mirror) gx = t.width - 1 - gx;
+      if (gx < -0.5 || gx > t.width - 0.5) continue;
+      const double f = std::clamp((t.sample(gx, gy) - lo) / step, 0.0, lum.size() - 1.001);
+      const auto k = static_cast<size_t>(f);
+      double e = cam.exposure * (lum[k] + (lum[k + 1] - lum[k]) * (f - k));
+      if (soot) e *= 1.0 - std::exp(-std::max(0.0, fuel->sample(gx, gy)) / cam.soot);
+      row[x] += static_cast<float>(e * at.gain);
+    }
+  }
+}
+
+Image finish_radiance(const std::vector<float>& canvas, int width, int height, const Camera& cam) {
+  Image img;
+  img.width = width;
+  img.height = height;
+  img.channels = 1;
+  img.pixels.resize(static_cast<size_t>(width) * height);
+  for (size_t i = 0; i < img.pixels.size(); ++i)
+    img.pixels[i] = encode_srgb(soft_clip(canvas[i], cam.knee));
+  return img;
+}
+
 std::array<double, 3> black_body_rgb(double kelvin) {
   const auto [X, Y, Z] = black_body_xyz(kelvin);
   std::array<double, 3> rgb = {3.2406 * X - 1.5372 * Y - 0.4986 * Z,

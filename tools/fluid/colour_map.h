@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "core/image.h"
 #include "grid2.h"
@@ -47,5 +48,28 @@ double soft_clip(double x, double knee);
 Image render_radiance(const Grid2& temperature, double t_ambient, double t_reference,
                       ColourMode mode, const Camera& camera, int scale,
                       const Grid2* fuel = nullptr);
+
+// Many slices, one picture (after Horvath and Geiger 2009, who render film
+// fire from many 2-D simulations placed in depth): where one simulation's
+// slice lands on a wider canvas. Canvas pixel (X, Y), Y top-down, shows grid
+// point ((X - left) / scale, (canvas_height - 1 - Y - bottom + 0.5) / scale - 0.5),
+// mirrored left-right when `mirror` is set; `gain` dims slices farther back.
+struct SlicePlacement {
+  double left = 0.0;    // canvas x of the grid's left edge, pixels
+  double bottom = 0.0;  // canvas rows between the canvas's bottom and the grid's floor
+  double scale = 1.0;   // canvas pixels per cell
+  double gain = 1.0;
+  bool mirror = false;
+};
+// Adds a slice's linear, exposed luminance (exposure * Y(T)/Y(T_ref) times
+// the soot emissivity, as render_radiance computes it before the soft clip)
+// to `canvas` (canvas_width x canvas_height, rows top-down). Light adds: the
+// slices are thin, mostly transparent glowing gas.
+void add_radiance(const Grid2& temperature, const Grid2* fuel, double t_ambient, double t_reference,
+                  const Camera& camera, const SlicePlacement& at, int canvas_width,
+                  int canvas_height, std::vector<float>& canvas);
+// The canvas through the camera's soft clip and the sRGB curve: gray pixels.
+Image finish_radiance(const std::vector<float>& canvas, int width, int height,
+                      const Camera& camera);
 
 }  // namespace candela::fluid

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "lattice_noise.h"
+
 namespace candela::fluid {
 namespace {
 
@@ -14,38 +16,6 @@ namespace {
 }
 
 bool finite(double v) { return std::isfinite(v); }
-
-uint64_t mix64(uint64_t z) {
-  z += 0x9e3779b97f4a7c15ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
-// Value noise in [0, 1] on an integer lattice in (x, y, t), smoothstep-blended:
-// a hash of the lattice point (not a random stream), so it does not depend on
-// the order cells are visited in.
-double value_noise(uint64_t seed, double x, double y, double t) {
-  const double fx = std::floor(x), fy = std::floor(y), ft = std::floor(t);
-  const auto ix = static_cast<int64_t>(fx), iy = static_cast<int64_t>(fy),
-             it = static_cast<int64_t>(ft);
-  auto s = [](double a) { return a * a * (3.0 - 2.0 * a); };
-  const double ax = s(x - fx), ay = s(y - fy), at = s(t - ft);
-  auto h = [&](int64_t i, int64_t j, int64_t k) {
-    const uint64_t z = mix64(seed ^ mix64(static_cast<uint64_t>(i) * 0x8da6b343ull ^
-                                          static_cast<uint64_t>(j) * 0xd8163841ull ^
-                                          static_cast<uint64_t>(k) * 0xcb1ab31full));
-    return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
-  };
-  double c[2];
-  for (int k = 0; k < 2; ++k) {
-    const double a = h(ix, iy, it + k) + (h(ix + 1, iy, it + k) - h(ix, iy, it + k)) * ax;
-    const double b =
-        h(ix, iy + 1, it + k) + (h(ix + 1, iy + 1, it + k) - h(ix, iy + 1, it + k)) * ax;
-    c[k] = a + (b - a) * ay;
-  }
-  return c[0] + (c[1] - c[0]) * at;
-}
 
 }  // namespace
 

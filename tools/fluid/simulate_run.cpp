@@ -7,7 +7,9 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/random.h"
 #include "field_file.h"
+#include "fuel_bed.h"
 #include "sim_dataset.h"
 
 namespace candela::fluid {
@@ -93,6 +95,28 @@ FluidParams preset_params(const std::string& name) {
       s.flicker_hz = 8.0;
       p.sources.push_back(s);
     }
+  } else if (name == "tongues") {
+    // A short stretch of burning log: a few tongues, for --slices (several
+    // of them side by side make a hearth's fire). Narrow, so neighbouring
+    // tongues cannot merge into the one sheet a wide 2-D plume becomes;
+    // fast (real fire decorrelates in 25-40 ms) and fed in broad patches.
+    p = preset_params("fire");
+    p.width = 96;
+    p.height = 256;
+    p.buoyancy = 1.3;
+    HeatSource s = p.sources.front();
+    s.x = 0.5;
+    s.y = 0.05;
+    s.rx = 0.38;
+    s.ry = 0.04;
+    s.angle = 0.0;
+    s.rate = 9000.0;
+    s.fuel = 600.0;
+    s.turbulence = 0.7;
+    s.grain = 9.0;
+    s.kick = 450.0;
+    s.flicker_hz = 22.0;
+    p.sources = {s};
   } else if (name == "wick") {
     // A candle flame: fuel vapour from a small wick, burning in still air.
     p.width = 128;
@@ -123,8 +147,9 @@ FluidParams preset_params(const std::string& name) {
     s.flicker_hz = 6.0;
     p.sources = {s};
   } else {
-    throw std::invalid_argument("preset: \"candle\", \"fireplace\", \"fire\" or \"wick\" (got \"" +
-                                name + "\")");
+    throw std::invalid_argument(
+        "preset: \"candle\", \"fireplace\", \"fire\", \"tongues\" or \"wick\" (got \"" + name +
+        "\")");
   }
   return p;
 }
@@ -146,6 +171,15 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
     throw std::invalid_argument("soot: fuel units >= 0");
   if (!(opt.camera.knee >= 0.0) || !(opt.camera.knee < 1.0))
     throw std::invalid_argument("knee: a number in [0, 1)");
+  if (opt.slices < 1 || opt.slices > 64) throw std::invalid_argument("slices: 1..64");
+  if (!(opt.slice_spacing > 0.0) || opt.slice_spacing > 4.0)
+    throw std::invalid_argument("slice-spacing: a number in (0, 4] (slice widths)");
+  if (opt.slices > 1 && (!opt.radiance || opt.colour != ColourMode::kGray))
+    throw std::invalid_argument("slices: need --render radiance and --colour gray");
+  if (opt.fuel_bed && opt.slices < 2)
+    throw std::invalid_argument("fuel-bed: drawn on the canvas of --slices 2 or more");
+  if (opt.slices > 1 && opt.write_fields)
+    throw std::invalid_argument("slices: fields are per simulation; use --no-fields");
   if (opt.out_dir.empty()) throw std::invalid_argument("out: a folder to write the clip to");
   double t_ref = opt.t_reference;
   if (t_ref != 0.0 && (!(t_ref > params.t_ambient) || !std::isfinite(t_ref)))
@@ -158,17 +192,26 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
   if (ec) throw RuntimeError("cannot create " + opt.out_dir + ": " + ec.message());
 
   const auto start = std::chrono::steady_clock::now();
-  FluidSolver solver(params);
+  // One solver per slice, each with its own seed.
+  std::vector<FluidSolver> solvers;
+  solvers.reserve(opt.slices);
+  for (int k = 0; k < opt.slices; ++k) {
+    FluidParams p = params;
+    p.seed = params.seed + 0x9e3779b9ull * static_cast<uint64_t>(k);
+    solvers.emplace_back(p);
+  }
   SimulateSummary sum;
   const double dt = 1.0 / (opt.fps * opt.substeps);
   auto one_step = [&] {
-    const StepStats st = solver.step(dt);
-    ++sum.steps;
-    sum.max_pressure_iterations = std::max(sum.max_pressure_iterations, st.pressure.iterations);
-    if (!st.pressure.converged) ++sum.unconverged_steps;
-    if (st.max_speed > 0.0)
-      sum.max_relative_residual =
-          std::max(sum.max_relative_residual, st.pressure.residual / st.max_speed);
+    for (FluidSolver& solver : solvers) {
+      const StepStats st = solver.step(dt);
+      ++sum.steps;
+      sum.max_pressure_iterations = std::max(sum.max_pressure_iterations, st.pressure.iterations);
+      if (!st.pressure.converged) ++sum.unconverged_steps;
+      if (st.max_speed > 0.0)
+        sum.max_relative_residual =
+            std::max(sum.max_relative_residual, st.pressure.residual / st.max_speed);
+    }
   };
   const int warm_steps = static_cast<int>(std::lround(opt.warmup / dt));
   for (int k = 0; k < warm_steps; ++k) one_step();
@@ -176,22 +219,65 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
   // reach their own temperature once the flow carries heat away), so frames
   // use the whole gray range.
   if (t_ref == 0.0) {
-    t_ref = solver.max_temperature();
+    for (const FluidSolver& solver : solvers) t_ref = std::max(t_ref, solver.max_temperature());
     if (t_ref < params.t_ambient + 1.0)
       for (const HeatSource& s : params.sources) t_ref = std::max(t_ref, s.temperature);
   }
+
+  // Where each slice lands: centres spread evenly across the canvas with a
+  // seeded jitter; slices farther back are smaller, dimmer and stand a
+  // little higher (the fire bed seen from above), as in a real hearth.
+  const int canvas_h = params.height * opt.scale;
+  const int canvas_w = static_cast<int>(
+      std::lround(params.width * opt.scale * (1.0 + (opt.slices - 1) * opt.slice_spacing)));
+  std::vector<SlicePlacement> placement(opt.slices);
+  {
+    Pcg32 rng(params.seed * 0x2545f491ull + 77);
+    const double slice_w = params.width * opt.scale;
+    for (int k = 0; k < opt.slices; ++k) {
+      SlicePlacement& at = placement[k];
+      const double depth = rng.unit_double();  // 0 = front, 1 = back
+      at.scale = opt.scale * (1.0 - 0.45 * depth);
+      at.gain = 1.0 - 0.3 * depth;
+      at.bottom = 0.06 * canvas_h * depth;
+      at.mirror = rng.unit_double() < 0.5;
+      const double jitter = (rng.unit_double() - 0.5) * 0.3 * opt.slice_spacing * slice_w;
+      const double centre = slice_w * (0.5 + k * opt.slice_spacing) + jitter;
+      at.left = centre - 0.5 * params.width * at.scale;
+    }
+  }
+  std::vector<float> canvas;
+  const FuelBed bed = hearth_fuel_bed(canvas_w, canvas_h, params.seed);
 
   FieldFrame field;
   field.t_ambient = params.t_ambient;
   field.t_reference = t_ref;
   field.has_velocity = true;
+  const FluidSolver& solver = solvers.front();
   for (int f = 0; f < opt.frames; ++f) {
-    for (int k = 0; k < opt.substeps; ++k) one_step();
-    const Image img = opt.radiance
-                          ? render_radiance(solver.temperature(), params.t_ambient, t_ref,
-                                            opt.colour, opt.camera, opt.scale, &solver.fuel())
-                          : render_temperature(solver.temperature(), params.t_ambient, t_ref,
-                                               opt.colour, opt.scale);
+    Image img;
+    if (opt.slices > 1) {
+      // The shutter is open the whole frame: the picture is the mean of the
+      // substeps' light, so fast tongues blur along their motion as on video.
+      canvas.assign(static_cast<size_t>(canvas_w) * canvas_h, 0.0f);
+      Camera cam = opt.camera;
+      cam.exposure /= opt.substeps;
+      for (int sub = 0; sub < opt.substeps; ++sub) {
+        one_step();
+        for (int k = 0; k < opt.slices; ++k)
+          add_radiance(solvers[k].temperature(), &solvers[k].fuel(), params.t_ambient, t_ref, cam,
+                       placement[k], canvas_w, canvas_h, canvas);
+      }
+      if (opt.fuel_bed) draw_fuel_bed(bed, opt.warmup + f / opt.fps, canvas_w, canvas_h, canvas);
+      img = finish_radiance(canvas, canvas_w, canvas_h, opt.camera);
+    } else if (opt.radiance) {
+      for (int k = 0; k < opt.substeps; ++k) one_step();
+      img = render_radiance(solver.temperature(), params.t_ambient, t_ref, opt.colour, opt.camera,
+                            opt.scale, &solver.fuel());
+    } else {
+      img =
+          render_temperature(solver.temperature(), params.t_ambient, t_ref, opt.colour, opt.scale);
+    }
     write_png(frame_path(opt.out_dir, f), img);
     if (opt.write_fields) {
       field.index = static_cast<uint32_t>(f);
@@ -213,7 +299,7 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
   m.command = opt.command;
   m.frames = opt.frames;
   m.fps = opt.fps;
-  m.width = params.width * opt.scale;
+  m.width = opt.slices > 1 ? canvas_w : params.width * opt.scale;
   m.height = params.height * opt.scale;
   m.colour = opt.colour == ColourMode::kGray ? "gray" : "blackbody";
   m.has_fields = opt.write_fields;

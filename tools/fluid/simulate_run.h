@@ -23,6 +23,14 @@ struct SimulateOptions {
   bool radiance = false;
   Camera camera;
   int scale = 1;  // image pixels per cell
+  // Slices: this many independent simulations of the preset (seeds differ),
+  // placed side by side and in depth on one wider canvas and added as light
+  // (gray radiance only). A 2-D plume merges into one sheet; real fire is
+  // many thin tongues side by side, which this gives.
+  int slices = 1;
+  double slice_spacing = 0.5;  // distance between slice centres, in slice widths
+  // Logs and coals around the flames (fuel_bed.h), drawn on the slices' canvas.
+  bool fuel_bed = false;
   bool write_fields = true;
   double t_reference = 0.0;  // 0 = the hottest cell after the warm-up
   std::string out_dir;
