@@ -85,7 +85,12 @@ bool QualityGovernor::add_frame(double frame_ms) {
     // Falling back right after a raise: that raise was a mistake; wait longer next time.
     if (raised_from_ == level_ + 1) raise_after_ = std::min(raise_after_ * 2, s_.max_raise_after);
     raised_from_ = -1;
-    change_to(level_ + 1, far_over ? s_.quick_warmup : s_.warmup);
+    // Twice as far over again: two levels at once (and no ratio learnt from
+    // that jump, which spans two).
+    const bool very_far = far_over && mean > 2 * s_.far_above * s_.budget_ms;
+    change_to(std::min(level_ + (very_far ? 2 : 1), levels() - 1),
+              far_over ? s_.quick_warmup : s_.warmup);
+    if (very_far) left_level_ = -1;
     return true;
   }
   // A window within budget at a raised level ends its probation.

@@ -34,10 +34,11 @@ class QualityGovernor {
     double predicted_below = 0.9;  // ... and the level above is predicted under budget * this
     // Far over budget (a big screen, a slow board), waiting whole windows
     // would show seconds of slow frames on the way down: a few frames over
-    // budget * far_above are enough to step down, after a shorter warm-up.
+    // budget * far_above are enough to step down (two levels when over
+    // twice that), after a shorter warm-up.
     double far_above = 2.0;
-    int quick_window = 4;
-    int quick_warmup = 2;
+    int quick_window = 3;
+    int quick_warmup = 1;
   };
 
   // The ladder from `top` (best) down to the floors: each rung lowers one of
