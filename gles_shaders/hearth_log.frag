@@ -1,8 +1,11 @@
 #version 300 es
-// A burning log: bark in long ridges, charred black where the fire licks
-// it (the top and the side facing the fire) with cracks glowing and pulsing
-// in the char, pale end grain with rings and a burnt rim; lit by the fire's
-// flickering light (u_light: colour * flicker, w: ember strength).
+// A burning log's static look, rendered once into the hearth's cache (see
+// hearth.cpp): bark in long ridges, charred black where the fire licks it
+// (the top and the side facing the fire) with cracks in the char, pale end
+// grain with rings and a burnt rim. Out: the unlit colour (RGB10_A2) and the
+// cracks' glow (two 8-bit halves) with their pulse's two hashes.
+// hearth_log_shade.frag lights it and pulses the cracks every frame, so the
+// noise here runs only when the view changes.
 precision highp float;
 
 in vec3 v_world;
@@ -10,13 +13,11 @@ in vec3 v_normal;
 in vec3 v_log;
 in float v_seed;
 in float v_radius;
-out vec4 o_color;
+layout(location = 0) out vec4 o_colour;
+layout(location = 1) out vec4 o_crack;
 
-uniform vec3 u_camera;
 uniform vec3 u_light_pos;
-uniform vec4 u_light;
 uniform vec3 u_bark;
-uniform float u_time;
 
 float hash(vec2 p) {
   p = fract(p * vec2(0.1031, 0.1030));
@@ -32,12 +33,9 @@ float fbm(vec2 p) { return 0.55 * noise(p) + 0.3 * noise(p * 2.1 + 7.0) + 0.15 *
 
 void main() {
   vec3 n = normalize(v_normal);
-  vec3 to_light = u_light_pos - v_world;
-  float d2 = dot(to_light, to_light);
-  float facing = max(dot(n, normalize(to_light)), 0.0);
-  vec3 lit = u_light.rgb * (0.45 + 2.2 * facing) / (1.0 + d2 * 2.0);
+  float facing = max(dot(n, normalize(u_light_pos - v_world)), 0.0);
   vec3 colour;
-  float glow = 0.0;
+  o_crack = vec4(0.0);
   if (v_log.z > 0.5) {
     // End grain: rings, pale wood, burnt towards the rim.
     float r = v_radius;
@@ -56,9 +54,9 @@ void main() {
     float c = abs(fbm(q * 2.2 + 11.0) - 0.5);
     float patches = smoothstep(0.45, 0.75, fbm(q * 0.6 + 23.0));  // glowing only in places
     float crack = smoothstep(0.035, 0.0, c) * char_amount * patches;
-    float pulse = 0.6 + 0.4 * sin(u_time * (1.3 + hash(floor(q * 2.0)) * 2.0) + hash(floor(q * 2.0) + 5.0) * 6.28);
-    glow = crack * pulse * u_light.w;
+    // 16 bits over two channels: the glow is bright, 8 would band it.
+    float hi = floor(crack * 255.0) / 255.0;
+    o_crack = vec4(hi, (crack - hi) * 255.0, hash(floor(q * 2.0)), hash(floor(q * 2.0) + 5.0));
   }
-  vec3 ember = vec3(1.0, 0.32, 0.05) * glow * 1.6 + vec3(1.0, 0.7, 0.3) * pow(glow, 3.0) * 0.6;
-  o_color = vec4(colour * (lit + vec3(0.03)) + ember, 1.0);
+  o_colour = vec4(colour, 1.0);
 }

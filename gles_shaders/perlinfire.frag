@@ -157,7 +157,10 @@ void main() {
       vec4 c = textureLod(u_profile, vec2(r * (1.0 + u_wobble * turb), 1.0 - v), 0.0);
       // Tongues that rise past the profile fade out below the bound's top.
       float density = c.a * (1.0 - smoothstep(u_bound.z - 0.2, u_bound.z, p.y));
-      if (u_tongue_gap.x > 0.0) {
+      // The gaps only ever thin the density (depth <= 1), so where it is
+      // already below the sheets' edge they cannot change this sample: skip
+      // their noise there (most of the box: the air between the tongues).
+      if (u_tongue_gap.x > 0.0 && density > u_sheet.x) {
         // Gaps between tongues: the creases (|n| near 0) of one tall noise
         // field, the same through the whole depth, so the slabs do not fill
         // them in; they open from the base upwards and rise with the fire. The

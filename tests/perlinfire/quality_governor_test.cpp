@@ -54,6 +54,23 @@ TEST(QualityGovernor, SlowFramesStepQualityDownAndItSettles) {
   EXPECT_GT(cost_ms(g.at(g.level() - 1), full_ms), s.budget_ms * s.raise_below);
 }
 
+TEST(QualityGovernor, FarOverBudgetItComesDownInAFewFramesPerLevel) {
+  // A fire 12x over budget at its top level (a big screen on a slow board):
+  // waiting whole windows (24 frames a level) would show seconds of slow frames.
+  QualityGovernor::Settings s;
+  s.budget_ms = 1000.0 / 30;
+  QualityGovernor g(QualityGovernor::make_ladder(kTop), s);
+  int frame = 0;
+  while (frame < 1000 && cost_ms(g.current(), 400) > 2 * s.budget_ms)
+    g.add_frame(cost_ms(g.current(), 400)), ++frame;
+  // Five levels down (402 ms -> 52 ms) in under 25 frames (whole windows: 128).
+  EXPECT_LT(frame, 25);
+  // Within twice the budget, the ordinary windows take over and bring it inside.
+  for (int i = 0; i < 600; ++i) g.add_frame(cost_ms(g.current(), 400));
+  EXPECT_LE(cost_ms(g.current(), 400), s.budget_ms * s.lower_above);
+  EXPECT_GT(cost_ms(g.at(g.level() - 1), 400), s.budget_ms * s.raise_below);
+}
+
 TEST(QualityGovernor, CheapFramesBringQualityBack) {
   QualityGovernor g(QualityGovernor::make_ladder(kTop), {});
   for (int i = 0; i < 2000; ++i) g.add_frame(cost_ms(g.current(), 400));

@@ -104,19 +104,27 @@ class Hearth final : public Element {
  public:
   Hearth(const HearthSettings& s, Vec3 position, uint64_t seed)
       : s_(s), position_(position), light_(seed), seed_(static_cast<float>(seed % 1000) * 0.37f) {
-    logs_prog_ = Program::from_library("hearth_log.vert", "hearth_log.frag");
-    bed_prog_ = Program::from_library("floor_quad.vert", "hearth_bed.frag");
+    logs_cache_prog_ = Program::from_library("hearth_log.vert", "hearth_log.frag");
+    logs_prog_ = Program::from_library("hearth_log.vert", "hearth_log_shade.frag");
+    bed_cache_prog_ = Program::from_library("floor_quad.vert", "hearth_bed.frag");
+    bed_prog_ = Program::from_library("floor_quad.vert", "hearth_bed_shade.frag");
     const auto u = [&](const Program& p, const char* n) { return p.uniform(n); };
-    ul_ = {
-        u(logs_prog_, "u_view_projection"), u(logs_prog_, "u_camera"), u(logs_prog_, "u_light_pos"),
-        u(logs_prog_, "u_light"),           u(logs_prog_, "u_bark"),   u(logs_prog_, "u_time")};
+    ulc_ = {u(logs_cache_prog_, "u_view_projection"), u(logs_cache_prog_, "u_light_pos"),
+            u(logs_cache_prog_, "u_bark")};
+    ul_ = {u(logs_prog_, "u_view_projection"), u(logs_prog_, "u_light_pos"),
+           u(logs_prog_, "u_light"),           u(logs_prog_, "u_time"),
+           u(logs_prog_, "u_colour"),          u(logs_prog_, "u_crack"),
+           u(logs_prog_, "u_origin")};
+    ubc_ = {u(bed_cache_prog_, "u_view_projection"), u(bed_cache_prog_, "u_centre"),
+            u(bed_cache_prog_, "u_half"), u(bed_cache_prog_, "u_seed")};
     ub_ = {u(bed_prog_, "u_view_projection"),
            u(bed_prog_, "u_centre"),
            u(bed_prog_, "u_half"),
            u(bed_prog_, "u_time"),
            u(bed_prog_, "u_light"),
-           u(bed_prog_, "u_seed"),
-           u(bed_prog_, "u_embers")};
+           u(bed_prog_, "u_embers"),
+           u(bed_prog_, "u_cache"),
+           u(bed_prog_, "u_origin")};
 
     // In front: a log whose middle lies in the front fifth of the bed.
     const auto behind = [&](const LogDesc& d) {
@@ -173,19 +181,21 @@ class Hearth final : public Element {
       return;
     }
     if (pass != DrawPass::kBody) return;
+    refresh_cache(f);
     const float t = static_cast<float>(time_.to_double());
     const Vec3 lc = s_.light * (s_.light_strength * flicker_.to_float());
     // The bed first, flat on the floor; then the logs over it, depth-tested
     // against each other.
     if (s_.embers > 0) {
       bed_prog_.use();
-      glUniformMatrix4fv(ub_[0], 1, GL_FALSE, f.view_projection.m);
-      glUniform3f(ub_[1], position_.x, position_.y + 0.001f, position_.z);
-      glUniform2f(ub_[2], s_.width * 0.5f, s_.depth * 0.5f);
+      set_bed_quad(f, ub_[0], ub_[1], ub_[2]);
       glUniform1f(ub_[3], t);
       glUniform3f(ub_[4], lc.x, lc.y, lc.z);
-      glUniform1f(ub_[5], seed_);
-      glUniform1f(ub_[6], s_.embers);
+      glUniform1f(ub_[5], s_.embers);
+      glActiveTexture(GL_TEXTURE0);
+      glBindTexture(GL_TEXTURE_2D, bed_tex_.get());
+      glUniform1i(ub_[6], 0);
+      glUniform2i(ub_[7], cache_key_.viewport[0], cache_key_.viewport[1]);
       glDisable(GL_DEPTH_TEST);
       glDepthMask(GL_FALSE);
       glEnable(GL_BLEND);
@@ -199,29 +209,149 @@ class Hearth final : public Element {
   }
 
  private:
-  void draw_logs(const FrameContext& f, GLsizei first, GLsizei count) {
-    if (count <= 0) return;
-    const float light = s_.light_strength * flicker_.to_float();
-    const Vec3 lc = s_.light * light;
-    const float t = static_cast<float>(time_.to_double());
-    logs_prog_.use();
-    glUniformMatrix4fv(ul_[0], 1, GL_FALSE, f.view_projection.m);
-    glUniform3f(ul_[1], f.camera_position.x, f.camera_position.y, f.camera_position.z);
-    const Vec3 lp = position_ + s_.light_at;
-    glUniform3f(ul_[2], lp.x, lp.y, lp.z);
-    glUniform4f(ul_[3], lc.x, lc.y, lc.z, s_.embers);
-    glUniform3f(ul_[4], s_.bark.x, s_.bark.y, s_.bark.z);
-    glUniform1f(ul_[5], t);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+  // What the cache was rendered for: it holds per screen pixel what does not
+  // change while the view stays put.
+  struct CacheKey {
+    std::array<float, 16> view_projection{};
+    std::array<GLint, 4> viewport{};
+    bool operator==(const CacheKey&) const = default;
+  };
+
+  // The expensive part of the hearth (the bark, char and crack noise of the
+  // logs, the ember bed's cell search) depends only on the view, so it is
+  // rendered into screen-sized textures once, and again only when the view or
+  // the viewport changes; every frame then draws the same geometry with
+  // shaders that read that cache at their pixel and add what moves (the
+  // firelight's flicker, the embers' and cracks' pulses). The geometry and
+  // its depth are drawn as before, so the logs hide and are hidden exactly as
+  // they were.
+  void refresh_cache(const FrameContext& f) {
+    CacheKey key;
+    std::copy(std::begin(f.view_projection.m), std::end(f.view_projection.m),
+              key.view_projection.begin());
+    glGetIntegerv(GL_VIEWPORT, key.viewport.data());
+    if (cache_valid_ && key == cache_key_) return;
+    const int w = std::max(1, key.viewport[2]), h = std::max(1, key.viewport[3]);
+    GLint caller = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &caller);
+    if (!cache_valid_ || w != cache_key_.viewport[2] || h != cache_key_.viewport[3])
+      make_cache(w, h);
+    cache_key_ = key;
+    cache_valid_ = true;
+    glViewport(0, 0, w, h);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    if (s_.embers > 0) {
+      glBindFramebuffer(GL_FRAMEBUFFER, bed_fbo_.get());
+      glClearColor(0, 0, 0, 0);
+      glClear(GL_COLOR_BUFFER_BIT);
+      glDisable(GL_DEPTH_TEST);
+      bed_cache_prog_.use();
+      set_bed_quad(f, ubc_[0], ubc_[1], ubc_[2]);
+      glUniform1f(ubc_[3], seed_);
+      glBindVertexArray(bed_vao_.get());
+      glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, logs_fbo_.get());
+    glClearColor(0, 0, 0, 0);
+    glDepthMask(GL_TRUE);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (log_count_ > 0) {
+      logs_cache_prog_.use();
+      glUniformMatrix4fv(ulc_[0], 1, GL_FALSE, f.view_projection.m);
+      const Vec3 lp = position_ + s_.light_at;
+      glUniform3f(ulc_[1], lp.x, lp.y, lp.z);
+      glUniform3f(ulc_[2], s_.bark.x, s_.bark.y, s_.bark.z);
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LESS);
+      bind_log_instances(0);
+      glDrawArraysInstanced(GL_TRIANGLES, 0, vertex_count_, log_count_);
+      glDisable(GL_DEPTH_TEST);
+    }
+    glBindVertexArray(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(caller));
+    glViewport(key.viewport[0], key.viewport[1], key.viewport[2], key.viewport[3]);
+  }
+
+  static Texture make_cache_texture(GLenum format, int w, int h) {
+    Texture t = make_texture();
+    glBindTexture(GL_TEXTURE_2D, t.get());
+    glTexStorage2D(GL_TEXTURE_2D, 1, format, w, h);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+  }
+
+  void make_cache(int w, int h) {
+    // The logs' colour in 10 bits a channel (it is multiplied up by the
+    // firelight, 8 would show steps); the crack glow and the bed's heat are
+    // split over two 8-bit channels by their shaders.
+    log_colour_tex_ = make_cache_texture(GL_RGB10_A2, w, h);
+    log_crack_tex_ = make_cache_texture(GL_RGBA8, w, h);
+    logs_depth_ = make_renderbuffer();
+    glBindRenderbuffer(GL_RENDERBUFFER, logs_depth_.get());
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
+    logs_fbo_ = make_framebuffer();
+    glBindFramebuffer(GL_FRAMEBUFFER, logs_fbo_.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                           log_colour_tex_.get(), 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
+                           log_crack_tex_.get(), 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                              logs_depth_.get());
+    const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glDrawBuffers(2, both);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw RuntimeError("hearth: log cache framebuffer incomplete");
+    bed_tex_ = make_cache_texture(GL_RGBA8, w, h);
+    bed_fbo_ = make_framebuffer();
+    glBindFramebuffer(GL_FRAMEBUFFER, bed_fbo_.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, bed_tex_.get(), 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw RuntimeError("hearth: ember cache framebuffer incomplete");
+  }
+
+  void set_bed_quad(const FrameContext& f, GLint vp, GLint centre, GLint half) const {
+    glUniformMatrix4fv(vp, 1, GL_FALSE, f.view_projection.m);
+    glUniform3f(centre, position_.x, position_.y + 0.001f, position_.z);
+    glUniform2f(half, s_.width * 0.5f, s_.depth * 0.5f);
+  }
+
+  // Binds the log VAO with the per-log attributes starting at instance `first`.
+  void bind_log_instances(GLsizei first) const {
     glBindVertexArray(vao_.get());
-    // Instances [first, first + count): point the per-log attributes there.
     glBindBuffer(GL_ARRAY_BUFFER, inst_vbo_.get());
     for (int k = 0; k < kLogVec4; ++k)
       glVertexAttribPointer(
           static_cast<GLuint>(1 + k), 4, GL_FLOAT, GL_FALSE, kLogVec4 * 4 * sizeof(float),
           reinterpret_cast<const void*>((static_cast<uintptr_t>(first) * kLogVec4 + k) * 4 *
                                         sizeof(float)));
+  }
+
+  void draw_logs(const FrameContext& f, GLsizei first, GLsizei count) {
+    if (count <= 0 || !cache_valid_) return;
+    const float light = s_.light_strength * flicker_.to_float();
+    const Vec3 lc = s_.light * light;
+    const float t = static_cast<float>(time_.to_double());
+    logs_prog_.use();
+    glUniformMatrix4fv(ul_[0], 1, GL_FALSE, f.view_projection.m);
+    const Vec3 lp = position_ + s_.light_at;
+    glUniform3f(ul_[1], lp.x, lp.y, lp.z);
+    glUniform4f(ul_[2], lc.x, lc.y, lc.z, s_.embers);
+    glUniform1f(ul_[3], t);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, log_colour_tex_.get());
+    glUniform1i(ul_[4], 0);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, log_crack_tex_.get());
+    glUniform1i(ul_[5], 1);
+    glActiveTexture(GL_TEXTURE0);
+    glUniform2i(ul_[6], cache_key_.viewport[0], cache_key_.viewport[1]);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    // Instances [first, first + count).
+    bind_log_instances(first);
     glDrawArraysInstanced(GL_TRIANGLES, 0, vertex_count_, count);
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(0);
@@ -232,13 +362,21 @@ class Hearth final : public Element {
   Flicker light_;
   float seed_;
   Fixed time_, flicker_ = Fixed::from_int(1);
-  Program logs_prog_, bed_prog_;
+  Program logs_cache_prog_, logs_prog_, bed_cache_prog_, bed_prog_;
   VertexArray vao_, bed_vao_;
   Buffer mesh_vbo_, inst_vbo_;
   GLsizei vertex_count_ = 0, log_count_ = 0;
-  std::array<GLint, 6> ul_{};
+  std::array<GLint, 3> ulc_{};
+  std::array<GLint, 7> ul_{};
   GLsizei back_count_ = 0;  // logs [0, back_count_) behind the flames, the rest in front
-  std::array<GLint, 7> ub_{};
+  std::array<GLint, 4> ubc_{};
+  std::array<GLint, 8> ub_{};
+  // The cache (refresh_cache): per screen pixel, what the view alone decides.
+  Texture log_colour_tex_, log_crack_tex_, bed_tex_;
+  Renderbuffer logs_depth_;
+  Framebuffer logs_fbo_, bed_fbo_;
+  CacheKey cache_key_;
+  bool cache_valid_ = false;
 };
 
 class HearthSpec final : public ElementSpec {

@@ -49,12 +49,12 @@ QualityGovernor::QualityGovernor(std::vector<QualityLevel> ladder, Settings sett
   ratio_.assign(ladder_.size(), 0.0);
 }
 
-void QualityGovernor::change_to(int level) {
+void QualityGovernor::change_to(int level, int warmup) {
   left_level_ = level_;
   left_mean_ = sum_ / std::max(count_, 1);
   level_ = level;
   ++changes_;
-  skip_ = s_.warmup;
+  skip_ = warmup;
   count_ = 0;
   sum_ = 0;
   good_windows_ = 0;
@@ -66,7 +66,9 @@ bool QualityGovernor::add_frame(double frame_ms) {
     return false;
   }
   sum_ += frame_ms;
-  if (++count_ < s_.window) return false;
+  ++count_;
+  const bool far_over = count_ >= s_.quick_window && sum_ > s_.budget_ms * s_.far_above * count_;
+  if (count_ < s_.window && !far_over) return false;
   const double mean = sum_ / count_;
   // The first window after a change: learn how the two levels compare.
   if (left_level_ >= 0 && mean > 0) {
@@ -83,7 +85,12 @@ bool QualityGovernor::add_frame(double frame_ms) {
     // Falling back right after a raise: that raise was a mistake; wait longer next time.
     if (raised_from_ == level_ + 1) raise_after_ = std::min(raise_after_ * 2, s_.max_raise_after);
     raised_from_ = -1;
-    change_to(level_ + 1);
+    // Twice as far over again: two levels at once (and no ratio learnt from
+    // that jump, which spans two).
+    const bool very_far = far_over && mean > 2 * s_.far_above * s_.budget_ms;
+    change_to(std::min(level_ + (very_far ? 2 : 1), levels() - 1),
+              far_over ? s_.quick_warmup : s_.warmup);
+    if (very_far) left_level_ = -1;
     return true;
   }
   // A window within budget at a raised level ends its probation.
@@ -96,7 +103,7 @@ bool QualityGovernor::add_frame(double frame_ms) {
   if (level_ > 0 && mean < s_.budget_ms * s_.raise_below && fits_above) {
     if (++good_windows_ >= raise_after_) {
       raised_from_ = level_;
-      change_to(level_ - 1);
+      change_to(level_ - 1, s_.warmup);
       return true;
     }
   } else {

@@ -32,6 +32,13 @@ class QualityGovernor {
     int raise_after = 3;             // ... for this many windows in a row (doubled on each retreat)
     int max_raise_after = 64;
     double predicted_below = 0.9;  // ... and the level above is predicted under budget * this
+    // Far over budget (a big screen, a slow board), waiting whole windows
+    // would show seconds of slow frames on the way down: a few frames over
+    // budget * far_above are enough to step down (two levels when over
+    // twice that), after a shorter warm-up.
+    double far_above = 2.0;
+    int quick_window = 3;
+    int quick_warmup = 1;
   };
 
   // The ladder from `top` (best) down to the floors: each rung lowers one of
@@ -51,7 +58,7 @@ class QualityGovernor {
   int changes() const { return changes_; }
 
  private:
-  void change_to(int level);
+  void change_to(int level, int warmup);
   std::vector<QualityLevel> ladder_;
   // ratio_[l]: mean frame time at level l - 1 over that at level l, when last
   // seen one after the other (0: not yet).
