@@ -168,7 +168,11 @@ BuiltModel build_model(const Dataset& d, const BuildOptions& opt) {
   mw.add_i32("graph.successors", {static_cast<int64_t>(m.graph.successors.size())},
              m.graph.successors);
   mw.add_f32("graph.cost", {static_cast<int64_t>(m.graph.cost.size())}, m.graph.cost);
-  if (m.has_flames) {
+  // Without dynamics the part is kept for the comparison above but not
+  // written: the runtime plays Learning Flames only through a learned ARP.
+  if (m.has_flames && !opt.flames.learn_dynamics && opt.progress)
+    opt.progress("Learning Flames without dynamics: compared, not written to the model");
+  if (m.has_flames && opt.flames.learn_dynamics) {
     const LearningFlamesModel& lf = m.flames;
     const ShapeOptions& so = lf.shape;
     const int dim = lf.dim(), K = lf.dynamics.arp.order, T = static_cast<int>(lf.frames.size());
