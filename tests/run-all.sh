@@ -39,6 +39,7 @@ cmake --build build-asan -j "$jobs"
 ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE 'board|numeric'
 
 # libFuzzer (clang, build-fuzz/): the model reader with the players built from
-# it, and the scene reader, 30 s each from tests/fuzz/corpus/; any crash,
-# leak, timeout or > 2 GB RSS fails the run.
-tests/fuzz/run-fuzz.sh 30
+# it, the scene reader, noise tables, the control-socket commands and the
+# dataset manifest, 20 s each from tests/fuzz/corpus/; any crash, leak,
+# timeout or > 2 GB RSS fails the run.
+tests/fuzz/run-fuzz.sh 20
