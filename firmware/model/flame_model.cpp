@@ -174,11 +174,18 @@ FlameModel FlameModel::from(ModelFile file) {
     const auto& lf = *lf_it;
     const std::string p = "model.learning_flames";
     LearningFlamesModel& L = m.flames;
-    constexpr int lo = std::numeric_limits<int>::min(), hi = std::numeric_limits<int>::max();
-    L.np = get_int(f, lf, p, "np", lo, hi);
-    L.nw = get_int(f, lf, p, "nw", lo, hi);
-    L.ne = get_int(f, lf, p, "ne", lo, hi);
-    L.order = get_int(f, lf, p, "order", lo, hi);
+    // Any integer here; learning_flames_size_problem says which ones the players take.
+    const auto size = [&](const char* key) {
+      const auto& v = member(f, lf, p, key);
+      if (!v.is_number_integer() || v.get<int64_t>() < std::numeric_limits<int>::min() ||
+          v.get<int64_t>() > std::numeric_limits<int>::max())
+        f.fail(p + "." + key, "expected an integer");
+      return static_cast<int>(v.get<int64_t>());
+    };
+    L.np = size("np");
+    L.nw = size("nw");
+    L.ne = size("ne");
+    L.order = size("order");
     if (auto bad = learning_flames_size_problem(L.np, L.nw, L.ne, L.order))
       f.fail(bad->field.empty() ? p : p + "." + bad->field, bad->problem);
     L.width = get_int(f, lf, p, "width", 1, 16384);
