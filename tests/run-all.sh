@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds and runs every test twice: a normal build (build/) and an
 # AddressSanitizer + UndefinedBehaviorSanitizer build (build-asan/). The
-# virtual-board tests (label "board", slow under emulation) run in the
-# normal build only.
+# virtual-board tests (label "board", slow under emulation) and the slow pure
+# numerics (label "numeric") run in the normal build only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
@@ -34,9 +34,12 @@ export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCANDELA_WERROR=ON -DCANDELA_SANITIZE=ON -DCANDELA_BUILD_BENCH=OFF
 cmake --build build-asan -j "$jobs"
-ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE board
+# Label "numeric": pure numerics whose code a smaller test runs here (5 min
+# under ASan for 2 s normally); they run in the normal build above.
+ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE 'board|numeric'
 
 # libFuzzer (clang, build-fuzz/): the model reader with the players built from
-# it, and the scene reader, 30 s each from tests/fuzz/corpus/; any crash,
-# leak, timeout or > 2 GB RSS fails the run.
-tests/fuzz/run-fuzz.sh 30
+# it, the scene reader, noise tables, the control-socket commands and the
+# dataset manifest, 20 s each from tests/fuzz/corpus/; any crash, leak,
+# timeout or > 2 GB RSS fails the run.
+tests/fuzz/run-fuzz.sh 20

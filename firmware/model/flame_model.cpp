@@ -1,6 +1,7 @@
 #include "model/flame_model.h"
 
 #include <cmath>
+#include <limits>
 
 namespace candela::model {
 namespace {
@@ -64,6 +65,24 @@ QuantisedImages quantised(const ModelFile& f, const std::string& name, int count
 }
 
 }  // namespace
+
+std::optional<SizeProblem> learning_flames_size_problem(int np, int nw, int ne, int order) {
+  const auto range = [](const char* field, int v, int lo, int hi) -> std::optional<SizeProblem> {
+    if (v >= lo && v <= hi) return std::nullopt;
+    return SizeProblem{
+        field, "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]"};
+  };
+  if (auto p = range("np", np, 2, 256)) return p;
+  if (auto p = range("nw", nw, 2, 256)) return p;
+  if (auto p = range("ne", ne, 1, 256)) return p;
+  if (auto p = range("order", order, 1, kMaxArpOrder)) return p;
+  const int dim = np + nw + 1 + ne;
+  if (dim > kMaxArpDim)
+    return SizeProblem{"", "np + nw + 1 + ne = " + std::to_string(dim) +
+                               "; the ARP player takes a state of at most " +
+                               std::to_string(kMaxArpDim)};
+  return std::nullopt;
+}
 
 FlameModel FlameModel::load(const std::string& path) { return from(ModelFile::open(path)); }
 
@@ -155,19 +174,26 @@ FlameModel FlameModel::from(ModelFile file) {
     const auto& lf = *lf_it;
     const std::string p = "model.learning_flames";
     LearningFlamesModel& L = m.flames;
-    L.np = get_int(f, lf, p, "np", 2, 256);
-    L.nw = get_int(f, lf, p, "nw", 2, 256);
-    L.ne = get_int(f, lf, p, "ne", 1, 256);
-    L.order = get_int(f, lf, p, "order", 1, kMaxArpOrder);
+    // Any integer here; learning_flames_size_problem says which ones the players take.
+    const auto size = [&](const char* key) {
+      const auto& v = member(f, lf, p, key);
+      if (!v.is_number_integer() || v.get<int64_t>() < std::numeric_limits<int>::min() ||
+          v.get<int64_t>() > std::numeric_limits<int>::max())
+        f.fail(p + "." + key, "expected an integer");
+      return static_cast<int>(v.get<int64_t>());
+    };
+    L.np = size("np");
+    L.nw = size("nw");
+    L.ne = size("ne");
+    L.order = size("order");
+    if (auto bad = learning_flames_size_problem(L.np, L.nw, L.ne, L.order))
+      f.fail(bad->field.empty() ? p : p + "." + bad->field, bad->problem);
     L.width = get_int(f, lf, p, "width", 1, 16384);
     L.height = get_int(f, lf, p, "height", 1, 16384);
     L.frames = get_int(f, lf, p, "frames", 1, 1 << 24);
     L.base_y = static_cast<float>(get_num(f, lf, p, "base_y", -1e6, 1e6));
     L.span = static_cast<float>(get_num(f, lf, p, "span", 0.1, 100));
     L.dim = L.np + L.nw + 1 + L.ne;
-    if (L.dim > kMaxArpDim)
-      f.fail(p, "np + nw + 1 + ne = " + std::to_string(L.dim) +
-                    "; the ARP player takes a state of at most " + std::to_string(kMaxArpDim));
     if (L.frames < L.order)
       f.fail(p + ".frames", "expected at least order = " + std::to_string(L.order) +
                                 " training frames, got " + std::to_string(L.frames));

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -32,6 +33,15 @@ inline constexpr int kMaxArpDim = 64;   // ArpProcess: np + nw + 1 + ne
 inline constexpr int kMaxSuccessors =
     1024;  // GraphWalker: jumps from one frame (sums stay in Q16.16)
 inline constexpr double kMaxClipFps = 1000;  // model frames per second x speed (<= 8) in Q16.16
+
+// What is wrong with a Learning Flames part of these sizes for the players:
+// `field` under "learning_flames" (empty: the sizes together) and the
+// problem, or nothing when they can play it. FlameModel::from refuses a file
+// that fails this; `candela-tool build` asks it before learning anything.
+struct SizeProblem {
+  std::string field, problem;
+};
+std::optional<SizeProblem> learning_flames_size_problem(int np, int nw, int ne, int order);
 
 // A stack of quantised images: value = offset[i] + scale[i] * q.
 struct QuantisedImages {

@@ -1,29 +1,33 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (tests/fuzz/CMakeLists.txt) with clang in
 # build-fuzz/ and runs each for a fixed budget from its seed corpus
-# (tests/fuzz/corpus/<target>/), failing on any crash, leak, sanitizer report,
+# (tests/fuzz/corpus/<kind>/), failing on any crash, leak, sanitizer report,
 # timeout (10 s per input) or more than 2 GB RSS. Prints executions per second
 # and coverage (edges) per target. A crash leaves its input in build-fuzz/:
 # add it to the corpus once fixed, as a regression input.
-#   tests/fuzz/run-fuzz.sh [SECONDS_PER_TARGET]   (default 30; Debian: clang libclang-rt-14-dev)
+#   tests/fuzz/run-fuzz.sh [SECONDS_PER_TARGET]   (default 20; Debian: clang libclang-rt-14-dev)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-budget=${1:-30}
+budget=${1:-20}
 # The runtime's noise tables come from the normal build's candela-tool (not
 # needed by the fuzz targets, but the project's configure names one).
 tool=${CANDELA_NOISE_TOOL:-$PWD/build/tools/candela-tool/candela-tool}
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
   -DCMAKE_CXX_COMPILER=clang++ -DCANDELA_WERROR=ON -DCANDELA_BUILD_BENCH=OFF -DCANDELA_NOISE_TOOL="$tool" >/dev/null
-cmake --build build-fuzz --target model_reader_fuzz scene_reader_fuzz
+# target:corpus folder
+targets="model_reader:model scene_reader:scene noise_table:noise control_command:control
+  dataset_manifest:manifest"
+cmake --build build-fuzz --target $(for t in $targets; do printf '%s_fuzz ' "${t%%:*}"; done)
 status=0
-for target in model_reader scene_reader; do
+for entry in $targets; do
+  target=${entry%%:*} seeds=${entry#*:}
   work=build-fuzz/fuzz-$target
   rm -rf "$work" && mkdir -p "$work/corpus"
   log=$work/log.txt
   # New inputs go to $work/corpus; the committed seeds are read only.
   if ! (cd "$work" && ASAN_OPTIONS=detect_leaks=1 ../tests/fuzz/${target}_fuzz -max_total_time="$budget" \
         -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 corpus \
-        "$OLDPWD/tests/fuzz/corpus/${target%_reader}") >"$log" 2>&1; then
+        "$OLDPWD/tests/fuzz/corpus/$seeds") >"$log" 2>&1; then
     echo "run-fuzz: $target FAILED; see $log" >&2
     tail -40 "$log" >&2
     status=1

@@ -1,5 +1,5 @@
-// Learning Flames: spline, shape normalisation and its inverse, the ARP
-// learned by EM with condensation, and the model against plain EigenFires.
+// Learning Flames: spline, shape normalisation and its inverse, and the
+// model against plain EigenFires (the ARP's own test: arp_test.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -50,84 +50,54 @@ TEST(LearningFlames, NormalisationInvertsOnRealFrames) {
   }
 }
 
-TEST(Arp, EmWithCondensationRecoversAKnownAr2) {
-  // x_t = A1 x_{t-1} + A2 x_{t-2} + d + B w_t in three dimensions, coupled.
-  const int D = 3;
-  ct::Arp truth;
-  truth.order = 2;
-  Eigen::MatrixXd A1(D, D), A2(D, D), B(D, D);
-  A1 << 1.2, 0.2, 0.0, -0.1, 0.9, 0.1, 0.0, 0.0, 0.5;
-  A2 << -0.5, 0.0, 0.0, 0.0, -0.2, 0.0, 0.1, 0.0, 0.2;
-  B << 0.5, 0, 0, 0.1, 0.3, 0, 0, 0.05, 0.4;
-  truth.A = {A1, A2};
-  truth.d = Eigen::Vector3d(1.0, -0.5, 2.0);
-  truth.B = B;
-  std::mt19937_64 rng(7);
-  std::vector<Eigen::MatrixXd> seqs;
-  for (int s = 0; s < 3; ++s) {
-    Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, D);
-    Eigen::MatrixXd x = ct::sample_arp(truth, h, 900, rng);
-    seqs.push_back(x.bottomRows(800));  // past the start-up transient
-  }
-  ct::ArpLearnOptions o;
-  o.particles = 100;
-  o.observation_noise = 0.05;
-  ct::ArpLearnResult r = ct::learn_arp(seqs, o);
-  std::printf("EM iterations %d, log-likelihood %.1f -> %.1f\n", r.iterations,
-              r.log_likelihood.front(), r.log_likelihood.back());
-  const double a_err =
-      std::max((r.arp.A[0] - A1).cwiseAbs().maxCoeff(), (r.arp.A[1] - A2).cwiseAbs().maxCoeff());
-  const Eigen::MatrixXd q = r.arp.B * r.arp.B.transpose(), qt = B * B.transpose();
-  const double q_err = (q - qt).cwiseAbs().maxCoeff() / qt.cwiseAbs().maxCoeff();
-  // d is compared through the process mean it implies, mu = (I - A1 - A2)^-1 d.
-  const Eigen::VectorXd mu =
-      (Eigen::MatrixXd::Identity(D, D) - r.arp.A[0] - r.arp.A[1]).lu().solve(r.arp.d);
-  const Eigen::VectorXd mut = (Eigen::MatrixXd::Identity(D, D) - A1 - A2).lu().solve(truth.d);
-  std::printf("max |A - A_true| %.3f, noise covariance error %.1f%%, mean error %.3f\n", a_err,
-              100 * q_err, (mu - mut).cwiseAbs().maxCoeff());
-  EXPECT_LT(a_err, 0.08);
-  EXPECT_LT(q_err, 0.2);
-  EXPECT_LT((mu - mut).cwiseAbs().maxCoeff(), 0.1 * mut.cwiseAbs().maxCoeff());
-  EXPECT_GE(r.log_likelihood.back(), r.log_likelihood.front()) << "EM should not lose likelihood";
+// ctest runs each test as its own process, so a shared fixture was built
+// twice (6 minutes each under ASan): each test now computes only what it
+// asserts. The comparison needs the PCA and the shape model but no dynamics;
+// the spectrum needs the dynamics, learned from the very parameters
+// build_model would learn them from (same options, same held-out frames).
+namespace {
+ct::Dataset breeze_dataset() {
+  return ct::test::small_dataset("candle_breeze_tfg_flameshaken", 64, 104, 1);
 }
+ct::BuildOptions breeze_options() {
+  ct::BuildOptions o;
+  o.pca.components = 32;
+  // 30 particles and at most 8 EM iterations (100 and 13 before: 6 minutes
+  // under ASan): the height spectrum's distance is 2.0 dB either way, a
+  // quarter of what the test allows.
+  o.flames.arp.particles = 30;
+  o.flames.arp.max_iterations = 8;
+  return o;
+}
+}  // namespace
 
-class BreezeFlames : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() {
-    dataset_ =
-        new ct::Dataset(ct::test::small_dataset("candle_breeze_tfg_flameshaken", 64, 104, 1));
-    ct::BuildOptions o;
-    o.pca.components = 32;
-    o.flames.arp.particles = 100;
-    model_ = new ct::BuiltModel(ct::build_model(*dataset_, o));
-  }
-  static void TearDownTestSuite() {
-    delete model_;
-    delete dataset_;
-  }
-  static ct::Dataset* dataset_;
-  static ct::BuiltModel* model_;
-};
-ct::Dataset* BreezeFlames::dataset_ = nullptr;
-ct::BuiltModel* BreezeFlames::model_ = nullptr;
-
-TEST_F(BreezeFlames, NormalisedModelAgainstPlainPcaAtEqualParameters) {
-  ASSERT_TRUE(model_->has_flames);
+TEST(BreezeFlames, NormalisedModelAgainstPlainPcaAtEqualParameters) {
+  const ct::Dataset dataset = breeze_dataset();
+  ct::BuildOptions o = breeze_options();
+  o.flames.learn_dynamics = false;  // the comparison renders measured parameters only
+  const ct::BuiltModel m = ct::build_model(dataset, o);
+  ASSERT_TRUE(m.has_flames);
   std::printf(
       "breeze, held-out frames, %d numbers per frame: EigenFires %.2f dB, Learning Flames %.2f "
       "dB\n",
-      model_->equal_params, model_->plain_equal_db, model_->flames_equal_db);
-  EXPECT_EQ(model_->equal_params, 26);
+      m.equal_params, m.plain_equal_db, m.flames_equal_db);
+  EXPECT_EQ(m.equal_params, 26);
   // Straightening the flame before PCA pays off where it moves. (The issue
   // asked for 3 dB, met on linear gray; on the display-encoded gray that
   // datasets hold now, which weighs the flame's dim edge as a viewer does,
   // the gain on this small clip is 2.6 dB.)
-  EXPECT_GT(model_->flames_equal_db, model_->plain_equal_db + 2.5);
-  EXPECT_GT(model_->plain_equal_db, 18.0);
+  EXPECT_GT(m.flames_equal_db, m.plain_equal_db + 2.5);
+  EXPECT_GT(m.plain_equal_db, 18.0);
 }
 
-TEST_F(BreezeFlames, SynthesisedHeightHasTheRealSpectrum) {
-  const ct::LearningFlamesModel& lf = model_->flames;
+TEST(BreezeFlames, SynthesisedHeightHasTheRealSpectrum) {
+  const ct::Dataset dataset = breeze_dataset();
+  const ct::BuildOptions o = breeze_options();
+  ct::LearningFlamesOptions fo = o.flames;
+  for (int f = o.holdout_every - 1; f < dataset.frames(); f += o.holdout_every)
+    fo.holdout.push_back(f);  // as build_model holds them out
+  const ct::LearningFlamesModel lf = ct::learn_flames(dataset, fo);
+  std::printf("ARP: %d EM iterations\n", lf.dynamics.iterations);
   const int hcol = lf.shape.np + lf.shape.nw;
   std::vector<double> real(lf.params.rows());
   for (Eigen::Index t = 0; t < lf.params.rows(); ++t) real[t] = lf.params(t, hcol);
@@ -150,6 +120,6 @@ TEST_F(BreezeFlames, SynthesisedHeightHasTheRealSpectrum) {
       "%.1f..%.1f px\n",
       lsd, lo, hi);
   EXPECT_LT(lsd, 8.0);
-  EXPECT_GT(lo, -dataset_->height) << "the process must stay bounded";
-  EXPECT_LT(hi, 3.0 * dataset_->height);
+  EXPECT_GT(lo, -dataset.height) << "the process must stay bounded";
+  EXPECT_LT(hi, 3.0 * dataset.height);
 }

@@ -7,7 +7,9 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/error.h"
 #include "core/image.h"
+#include "dataset.h"
 #include "model_test_support.h"
 
 namespace ct = candela::tools;
@@ -110,4 +112,27 @@ TEST(Ingest, DatasetRoundTripsAndLabelsLand) {
   } catch (const candela::ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("frames.u8"), std::string::npos);
   }
+}
+
+// Found by dataset_manifest_fuzz: a key of the wrong JSON type escaped as
+// nlohmann's type error ("type must be string, but is number"), naming no
+// file; it is a ConfigError naming the manifest and the key, like the others.
+TEST(Ingest, ManifestKeysOfTheWrongTypeNameTheFileAndKey) {
+  const auto error_of = [](const std::string& text) -> std::string {
+    try {
+      ct::parse_manifest(text, "d/manifest.json");
+    } catch (const candela::ConfigError& e) {
+      return e.what();
+    }
+    return "parsed";
+  };
+  const std::string clip = R"("clips": [{"name": "c", "first": 0, "count": 1, "fps": 30)";
+  const std::string head =
+      R"("format": "candela-dataset", "version": 1, "width": 2, "height": 2, "frames": 1, )";
+  EXPECT_EQ(error_of(R"({"format": 2})"), "d/manifest.json: format: expected \"candela-dataset\"");
+  EXPECT_EQ(error_of(R"({"format": "candela-dataset", "version": "1"})"),
+            "d/manifest.json: version: expected 1");
+  EXPECT_EQ(error_of("{" + head + clip + R"(, "source": 7}]})"),
+            "d/manifest.json: clips[0].source: expected a string");
+  EXPECT_EQ(error_of("{" + head + clip + "}]}"), "parsed");
 }

@@ -279,6 +279,14 @@ TEST(FlameModel, RefusesWhatThePlayersCannotPlay) {
   // 65 parameters (sizes up to 256 each used to pass; the ARP state holds 64).
   EXPECT_EQ(error_of(with_flames(small_model(), 2, 30, 30, 4).bytes(), &msg), Kind::kInconsistent);
   EXPECT_NE(msg.find("np + nw + 1 + ne = 65"), std::string::npos) << msg;
+  // A size that is no integer at all says so (not the range of an int).
+  EXPECT_EQ(error_of(edited(with_flames(small_model(), 2),
+                            [](nlohmann::json& i) { i["learning_flames"]["np"] = "4"; })
+                         .bytes(),
+                     &msg),
+            Kind::kInconsistent);
+  EXPECT_NE(msg.find("learning_flames.np: expected an integer"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("2147483647"), std::string::npos) << msg;
   // Fewer training frames than the order.
   EXPECT_EQ(error_of(with_flames(small_model(), 3, 4, 4, 2, 2).bytes(), &msg), Kind::kInconsistent);
   EXPECT_NE(msg.find("learning_flames.frames"), std::string::npos) << msg;

@@ -61,7 +61,7 @@ int run_build(int argc, char** argv) {
   app.add_option("--particles", opt.flames.arp.particles, "ARP learning: condensation particles Nc")
       ->capture_default_str();
   app.add_option("--order", opt.flames.arp.order, "ARP order K")
-      ->check(CLI::Range(1, 4))
+      ->check(CLI::Range(1, candela::model::kMaxArpOrder))
       ->capture_default_str();
   app.add_option("--report", report, "folder for the reports (default: MODEL.report)");
   try {
@@ -69,8 +69,15 @@ int run_build(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  auto d = candela::tools::load_dataset(dataset);
   opt.learning_flames = !no_flames;
+  // Before the dataset is read: options whose model the runtime would refuse.
+  try {
+    candela::tools::check_build_options(opt);
+  } catch (const candela::tools::BuildOptionError& e) {
+    std::fprintf(stderr, "candela-tool build: %s\n", e.what());
+    return 2;
+  }
+  auto d = candela::tools::load_dataset(dataset);
   opt.eigen_dtype = bits == 8 ? candela::model::DType::kU8 : candela::model::DType::kU16;
   opt.progress = [](const std::string& s) { std::fprintf(stderr, "build: %s\n", s.c_str()); };
   opt.provenance_options = {{"dataset", dataset},

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "core/error.h"
 
@@ -70,21 +71,18 @@ uint8_t encode_srgb8(float linear) {
   return static_cast<uint8_t>(std::lround(e * 255.0f));
 }
 
-Dataset load_dataset(const std::string& dir) {
-  const std::string mf = dir + "/manifest.json";
-  std::ifstream in(mf);
-  if (!in)
-    throw ConfigError(mf, "",
-                      "cannot open (is " + dir + " a dataset made by `candela-tool ingest`?)");
+Dataset parse_manifest(std::string_view text, const std::string& mf, bool* linear) {
   nlohmann::json m;
   try {
-    m = nlohmann::json::parse(in);
+    m = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw ConfigError(mf, "", std::string("not valid JSON: ") + e.what());
   }
-  if (!m.is_object() || m.value("format", "") != "candela-dataset")
+  // Compared as JSON, not read with value(), which throws a type error
+  // naming no file for a key of another type (found by dataset_manifest_fuzz).
+  if (!m.is_object() || !m.contains("format") || m["format"] != "candela-dataset")
     throw ConfigError(mf, "format", "expected \"candela-dataset\"");
-  if (m.value("version", 0) != 1) throw ConfigError(mf, "version", "expected 1");
+  if (!m.contains("version") || m["version"] != 1) throw ConfigError(mf, "version", "expected 1");
   Dataset d;
   d.width = need_int(mf, m, "", "width", 1, 16384);
   d.height = need_int(mf, m, "", "height", 1, 16384);
@@ -99,7 +97,9 @@ Dataset load_dataset(const std::string& dir) {
     if (!c.is_object() || !c.contains("name") || !c["name"].is_string())
       throw ConfigError(mf, p + "name", "expected a string");
     ci.name = c["name"].get<std::string>();
-    ci.source = c.value("source", "");
+    if (c.contains("source") && !c["source"].is_string())
+      throw ConfigError(mf, p + "source", "expected a string");
+    ci.source = c.contains("source") ? c["source"].get<std::string>() : "";
     ci.first = need_int(mf, c, p, "first", 0, frames);
     ci.count = need_int(mf, c, p, "count", 1, frames);
     if (ci.first != next || ci.first + ci.count > frames)
@@ -135,6 +135,24 @@ Dataset load_dataset(const std::string& dir) {
     }
   }
   if (m.contains("options")) d.options = m["options"];
+  const auto in = m.find("intensity");
+  const bool lin = in == m.end() || *in == "linear";
+  if (!lin && *in != "srgb") throw ConfigError(mf, "intensity", "expected \"srgb\" or \"linear\"");
+  if (linear) *linear = lin;
+  return d;
+}
+
+Dataset load_dataset(const std::string& dir) {
+  const std::string mf = dir + "/manifest.json";
+  std::ifstream in(mf);
+  if (!in)
+    throw ConfigError(mf, "",
+                      "cannot open (is " + dir + " a dataset made by `candela-tool ingest`?)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  bool linear = false;
+  Dataset d = parse_manifest(text.str(), mf, &linear);
+  const int frames = d.frames();
   const std::string ff = dir + "/frames.u8";
   const size_t want = d.frame_pixels() * frames;
   std::error_code ec;
@@ -150,13 +168,10 @@ Dataset load_dataset(const std::string& dir) {
   if (!fin) throw ConfigError(ff, "", "read failed");
   // Datasets made before intensities were display-encoded hold linear luma:
   // encode them as ingest does now, so old and new datasets build alike.
-  const std::string intensity = m.value("intensity", "linear");
-  if (intensity == "linear") {
+  if (linear) {
     std::array<uint8_t, 256> lut;
     for (int i = 0; i < 256; ++i) lut[i] = encode_srgb8(i / 255.0f);
     for (uint8_t& p : d.pixels) p = lut[p];
-  } else if (intensity != "srgb") {
-    throw ConfigError(mf, "intensity", "expected \"srgb\" or \"linear\"");
   }
   return d;
 }

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "model/flame_model.h"
@@ -36,6 +37,10 @@ void save_dataset(const Dataset& d, const std::string& dir);
 uint8_t encode_srgb8(float linear);
 // Validates the manifest and the frame file (ConfigError naming file and key).
 Dataset load_dataset(const std::string& dir);
+// The manifest's text alone, validated as load_dataset does (`file` names it
+// in errors): the dataset without its pixels; *linear tells whether the
+// frames hold linear luma (older datasets) rather than sRGB.
+Dataset parse_manifest(std::string_view text, const std::string& file, bool* linear = nullptr);
 
 // Picks every `step`-th frame and/or resamples to `frames` frames by blending
 // neighbours (used to make large benchmark sets from short clips).

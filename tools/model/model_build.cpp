@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "model/flame_model.h"
 #include "render.h"
 
 namespace candela::tools {
@@ -44,7 +45,30 @@ void compare_equal_parameters(const Dataset& d, BuiltModel& m) {
 
 }  // namespace
 
+void check_build_options(const BuildOptions& opt) {
+  if (opt.graph.max_successors + 1 > model::kMaxSuccessors)
+    throw BuildOptionError("--successors " + std::to_string(opt.graph.max_successors) +
+                           ": the graph player takes at most " +
+                           std::to_string(model::kMaxSuccessors) +
+                           " successors of a frame, the next frame and " +
+                           std::to_string(model::kMaxSuccessors - 1) + " jumps");
+  if (!opt.learning_flames) return;
+  const ShapeOptions& so = opt.flames.shape;
+  if (auto bad =
+          model::learning_flames_size_problem(so.np, so.nw, opt.flames.ne, opt.flames.arp.order)) {
+    const std::string what = bad->field.empty() ? "--np " + std::to_string(so.np) + ", --nw " +
+                                                      std::to_string(so.nw) + ", --ne " +
+                                                      std::to_string(opt.flames.ne)
+                                                : "--" + bad->field;
+    const std::string fix =
+        bad->field.empty() ? "lower --np, --nw or --ne" : "change --" + bad->field;
+    throw BuildOptionError("Learning Flames " + what + ": " + bad->problem + " (" + fix +
+                           ", or build with --no-learning-flames)");
+  }
+}
+
 BuiltModel build_model(const Dataset& d, const BuildOptions& opt) {
+  check_build_options(opt);
   BuiltModel m;
   PcaOptions po = opt.pca;
   po.progress = opt.progress;
@@ -168,7 +192,11 @@ BuiltModel build_model(const Dataset& d, const BuildOptions& opt) {
   mw.add_i32("graph.successors", {static_cast<int64_t>(m.graph.successors.size())},
              m.graph.successors);
   mw.add_f32("graph.cost", {static_cast<int64_t>(m.graph.cost.size())}, m.graph.cost);
-  if (m.has_flames) {
+  // Without dynamics the part is kept for the comparison above but not
+  // written: the runtime plays Learning Flames only through a learned ARP.
+  if (m.has_flames && !opt.flames.learn_dynamics && opt.progress)
+    opt.progress("Learning Flames without dynamics: compared, not written to the model");
+  if (m.has_flames && opt.flames.learn_dynamics) {
     const LearningFlamesModel& lf = m.flames;
     const ShapeOptions& so = lf.shape;
     const int dim = lf.dim(), K = lf.dynamics.arp.order, T = static_cast<int>(lf.frames.size());
@@ -214,6 +242,12 @@ BuiltModel build_model(const Dataset& d, const BuildOptions& opt) {
     Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> b =
         lf.dynamics.arp.B.cast<float>();
     mw.add_f32("arp.B", {dim, dim}, {b.data(), static_cast<size_t>(b.size())});
+  }
+  // The runtime's own validation, on the very bytes `write` will store.
+  try {
+    (void)model::FlameModel::from(model::ModelFile::from_bytes(mw.bytes(), "the model built"));
+  } catch (const model::ModelError& e) {
+    throw std::runtime_error(std::string(e.what()) + " (the runtime would refuse this model)");
   }
   return m;
 }

@@ -2,6 +2,7 @@
 // Flames, when enabled) -> one model file, plus the reports.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -45,7 +46,16 @@ struct BuiltModel {
   float black_level = 0;  // written to the model's colour (see build_model)
 };
 
+// Throws BuildOptionError, before any work, for options whose model the
+// runtime would refuse (FlameModel::from's limits), and std::runtime_error if
+// the model built fails the runtime's validation anyway (e.g. a clip's fps):
+// what it returns is a model that `candela` loads and plays.
 BuiltModel build_model(const Dataset& d, const BuildOptions& opt);
+// A build option the runtime's limits refuse; the message names the option.
+struct BuildOptionError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+void check_build_options(const BuildOptions& opt);
 // psnr.txt + psnr.png, eigenfires.png (contact sheet), trajectory.png (first three weights).
 void write_reports(const Dataset& d, const BuiltModel& m, const std::string& dir);
 std::string tool_version();
