@@ -447,7 +447,8 @@ TEST(FuelBed, FrontLogHidesFlamesLogsBehindShowThrough) {
   // A log behind: the flames' light adds over it.
   const Log& back = bed.logs[0];
   const double bx = 0.5 * (back.x0 + back.x1), by = 0.5 * (back.y0 + back.y1);
-  if (by >= h / 2) EXPECT_GE(at(lit, bx, by), 0.8f);
+  ASSERT_GE(by, h / 2.0) << "the back log stands in the flames";
+  EXPECT_GE(at(lit, bx, by), 0.8f);
   // Above the logs and coals nothing is drawn.
   EXPECT_EQ(at(dark, w / 2, 5), 0.0f);
   // Char glows in cracks, somewhere on the logs, and the glow changes in time.
