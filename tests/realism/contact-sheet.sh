@@ -61,5 +61,5 @@ done <<<"$rows"
 
 montage -background '#202020' -fill white -pointsize 11 "${tiles[@]}" \
   -tile 7x -geometry 192x192+4+4 "$out_png"
-echo "$out_png: rows a..e = candle calm, candle breeze, eigen graph, eigen arp, Perlin fire;" \
+echo "$out_png: rows = candle calm, candle breeze, eigen candle, eigen fire (built-in models), Perlin fire;" \
   "columns: 4 rendered frames (1, 4, 7, 10 s), then first frames of real clips of the kind"
