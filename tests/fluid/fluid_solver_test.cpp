@@ -393,7 +393,7 @@ TEST(Radiance, SliceOnACanvasIsTheSameLight) {
   const Image ref = render_radiance(t, amb, tref, ColourMode::kGray, cam, 1, &fuel);
   std::vector<float> canvas;
   SlicePlacement at;
-  add_radiance(t, &fuel, amb, tref, cam, at, 12, 10, canvas);
+  add_radiance(t, &fuel, RadianceTable(amb, tref), cam, at, 12, 10, canvas);
   const Image got = finish_radiance(canvas, 12, 10, cam);
   ASSERT_EQ(got.pixels.size(), ref.pixels.size());
   for (size_t i = 0; i < ref.pixels.size(); ++i)
@@ -403,14 +403,14 @@ TEST(Radiance, SliceOnACanvasIsTheSameLight) {
   at.left = 5.0;
   at.bottom = 2.0;
   at.mirror = true;
-  add_radiance(t, &fuel, amb, tref, cam, at, 20, 12, wide);
+  add_radiance(t, &fuel, RadianceTable(amb, tref), cam, at, 20, 12, wide);
   const Image m = finish_radiance(wide, 20, 12, cam);
   for (int y = 0; y < 10; ++y)
     for (int x = 0; x < 12; ++x) ASSERT_NEAR(m.at(5 + 11 - x, y), ref.at(x, y), 1) << x << "," << y;
   for (int y = 0; y < 12; ++y) EXPECT_EQ(m.at(2, y), 0) << "outside the slice stays dark";
   EXPECT_EQ(m.at(10, 11), 0) << "below the raised slice stays dark";
   // Light adds: the same slice twice is twice the exposure.
-  add_radiance(t, &fuel, amb, tref, cam, SlicePlacement{}, 12, 10, canvas);
+  add_radiance(t, &fuel, RadianceTable(amb, tref), cam, SlicePlacement{}, 12, 10, canvas);
   Camera twice = cam;
   twice.exposure = 5.0;
   const Image two = render_radiance(t, amb, tref, ColourMode::kGray, twice, 1, &fuel);

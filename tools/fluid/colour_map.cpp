@@ -52,6 +52,18 @@ double soft_clip(double x, double knee) {
   return 1.0 - r * std::exp(-(x - knee) / r);
 }
 
+RadianceTable::RadianceTable(double t_ambient, double t_reference) : lo(t_ambient) {
+  const double y_ref = black_body_luminance(t_reference);
+  for (double k = lo; k <= 2.0 * t_reference + step; k += step)
+    lum.push_back(black_body_luminance(k) / y_ref);
+}
+
+double RadianceTable::at(double kelvin) const {
+  const double f = std::clamp((kelvin - lo) / step, 0.0, lum.size() - 1.001);
+  const auto k = static_cast<size_t>(f);
+  return lum[k] + (lum[k + 1] - lum[k]) * (f - k);
+}
+
 Image render_radiance(const Grid2& t, double t_ambient, double t_reference, ColourMode mode,
                       const Camera& cam, int scale, const Grid2* fuel) {
   const bool soot = fuel && cam.soot > 0.0 && fuel->width == t.width && fuel->height == t.height;
@@ -61,12 +73,11 @@ Image render_radiance(const Grid2& t, double t_ambient, double t_reference, Colo
   img.channels = mode == ColourMode::kGray ? 1 : 3;
   img.pixels.resize(static_cast<size_t>(img.width) * img.height * img.channels);
   // Y(T)/Y(T_ref) and the Planck colour in 10 K steps up to twice T_ref.
-  const double step = 10.0, lo = t_ambient;
-  const double y_ref = black_body_luminance(t_reference);
-  std::vector<double> lum;
+  const RadianceTable table(t_ambient, t_reference);
+  const double step = table.step, lo = table.lo;
+  const std::vector<double>& lum = table.lum;
   std::vector<std::array<double, 3>> rgb;
   for (double k = lo; k <= 2.0 * t_reference + step; k += step) {
-    lum.push_back(black_body_luminance(k) / y_ref);
     if (mode != ColourMode::kGray) {
       auto c = black_body_rgb(k);
       const double l = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
@@ -95,16 +106,11 @@ Image render_radiance(const Grid2& t, double t_ambient, double t_reference, Colo
   return img;
 }
 
-void add_radiance(const Grid2& t, const Grid2* fuel, double t_ambient, double t_reference,
-                  const Camera& cam, const SlicePlacement& at, int canvas_width, int canvas_height,
+void add_radiance(const Grid2& t, const Grid2* fuel, const RadianceTable& table, const Camera& cam,
+                  const SlicePlacement& at, int canvas_width, int canvas_height,
                   std::vector<float>& canvas) {
   canvas.resize(static_cast<size_t>(canvas_width) * canvas_height, 0.0f);
   const bool soot = fuel && cam.soot > 0.0 && fuel->width == t.width && fuel->height == t.height;
-  const double step = 10.0, lo = t_ambient;
-  const double y_ref = black_body_luminance(t_reference);
-  std::vector<double> lum;
-  for (double k = lo; k <= 2.0 * t_reference + step; k += step)
-    lum.push_back(black_body_luminance(k) / y_ref);
   // Only the canvas pixels the grid covers.
   const int x0 = std::max(0, static_cast<int>(std::floor(at.left)));
   const int x1 = std::min(canvas_width, static_cast<int>(std::ceil(at.left + t.width * at.scale)));
@@ -118,9 +124,7 @@ void add_radiance(const Grid2& t, const Grid2* fuel, double t_ambient, double t_
       double gx = (x + 0.5 - at.left) / at.scale - 0.5;
       if (at.mirror) gx = t.width - 1 - gx;
       if (gx < -0.5 || gx > t.width - 0.5) continue;
-      const double f = std::clamp((t.sample(gx, gy) - lo) / step, 0.0, lum.size() - 1.001);
-      const auto k = static_cast<size_t>(f);
-      double e = cam.exposure * (lum[k] + (lum[k + 1] - lum[k]) * (f - k));
+      double e = cam.exposure * table.at(t.sample(gx, gy));
       if (soot) e *= 1.0 - std::exp(-std::max(0.0, fuel->sample(gx, gy)) / cam.soot);
       row[x] += static_cast<float>(e * at.gain);
     }

@@ -65,7 +65,15 @@ struct SlicePlacement {
 // the soot emissivity, as render_radiance computes it before the soft clip)
 // to `canvas` (canvas_width x canvas_height, rows top-down). Light adds: the
 // slices are thin, mostly transparent glowing gas.
-void add_radiance(const Grid2& temperature, const Grid2* fuel, double t_ambient, double t_reference,
+// Y(T)/Y(T_ref) in 10 K steps from T_amb up to twice T_ref: made once per
+// clip, read for every pixel of every slice.
+struct RadianceTable {
+  RadianceTable(double t_ambient, double t_reference);
+  double at(double kelvin) const;  // linear between steps, clamped to the table
+  double lo, step = 10.0;
+  std::vector<double> lum;
+};
+void add_radiance(const Grid2& temperature, const Grid2* fuel, const RadianceTable& table,
                   const Camera& camera, const SlicePlacement& at, int canvas_width,
                   int canvas_height, std::vector<float>& canvas);
 // The canvas through the camera's soft clip and the sRGB curve: gray pixels.

@@ -248,6 +248,7 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
   }
   std::vector<float> canvas;
   const FuelBed bed = hearth_fuel_bed(canvas_w, canvas_h, params.seed);
+  const RadianceTable table(params.t_ambient, t_ref);
 
   FieldFrame field;
   field.t_ambient = params.t_ambient;
@@ -265,8 +266,8 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
       for (int sub = 0; sub < opt.substeps; ++sub) {
         one_step();
         for (int k = 0; k < opt.slices; ++k)
-          add_radiance(solvers[k].temperature(), &solvers[k].fuel(), params.t_ambient, t_ref, cam,
-                       placement[k], canvas_w, canvas_h, canvas);
+          add_radiance(solvers[k].temperature(), &solvers[k].fuel(), table, cam, placement[k],
+                       canvas_w, canvas_h, canvas);
       }
       if (opt.fuel_bed) draw_fuel_bed(bed, opt.warmup + f / opt.fps, canvas_w, canvas_h, canvas);
       img = finish_radiance(canvas, canvas_w, canvas_h, opt.camera);
