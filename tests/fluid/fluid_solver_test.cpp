@@ -418,6 +418,38 @@ TEST(Radiance, SliceOnACanvasIsTheSameLight) {
   for (size_t i = 0; i < two.pixels.size(); ++i) ASSERT_NEAR(sum.pixels[i], two.pixels[i], 1);
 }
 
+// The camera's glow spreads bright light past a tongue's edge and fills a
+// narrow gap between two tongues; the haze lights the dark around the fire
+// but never above its own brightness, so it cannot join pieces on its own.
+TEST(Radiance, GlowFillsNarrowGapsHazeStaysDim) {
+  const int w = 64, h = 32;
+  std::vector<float> canvas(static_cast<size_t>(w) * h, 0.0f);
+  // Two bright tongues, 3 px apart.
+  for (int y = 4; y < 28; ++y)
+    for (int x = 20; x < 43; ++x)
+      if (x < 30 || x >= 33) canvas[static_cast<size_t>(y) * w + x] = 3.0f;
+  Camera plain;
+  plain.knee = 0.6;
+  const Image a = finish_radiance(canvas, w, h, plain);
+  EXPECT_EQ(a.at(31, 16), 0) << "no glow: the gap stays black";
+  EXPECT_GT(a.at(25, 16), 250) << "the tongues are clipped white";
+  Camera glow = plain;
+  glow.glow = 0.3;
+  glow.glow_radius = 3.0;
+  const Image g = finish_radiance(canvas, w, h, glow);
+  EXPECT_GT(g.at(31, 16), 0.25 * 255) << "the glow fills the gap above the flame threshold";
+  EXPECT_GT(g.at(17, 16), a.at(17, 16) + 20) << "and lights just past the outer edge";
+  EXPECT_LT(g.at(5, 16), 0.1 * 255) << "but not far from it";
+  Camera haze = plain;
+  haze.haze = 0.04;
+  haze.haze_radius = 8.0;
+  const Image z = finish_radiance(canvas, w, h, haze);
+  EXPECT_GT(z.at(17, 16), 0.1 * 255) << "the haze lights the dark beside the fire";
+  const double ceiling = 255.0 * 0.22;  // sRGB of linear 0.04, rounded up
+  for (int x = 0; x < 18; ++x) ASSERT_LE(z.at(x, 16), ceiling) << "x " << x;
+  EXPECT_LE(z.at(31, 16), ceiling) << "the haze alone does not join the tongues";
+}
+
 // The fuel bed: the front log hides the flames behind it and is lit by them;
 // flames add over the logs behind; charred wood glows in cracks that pulse;
 // coals glow only under the logs.

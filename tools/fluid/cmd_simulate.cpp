@@ -85,6 +85,18 @@ int run_simulate(int argc, char** argv) {
                  "radiance: gas glows by 1 - exp(-fuel / SOOT) (soot where fuel burns); 0 = all "
                  "hot gas glows")
       ->capture_default_str();
+  app.add_option("--glow", camera.glow,
+                 "slices: share of a blurred copy of the light added before the soft clip (the "
+                 "camera's scatter around bright flame); 0 = none")
+      ->capture_default_str();
+  app.add_option("--glow-radius", camera.glow_radius, "slices: the glow's Gaussian sigma, pixels")
+      ->capture_default_str();
+  app.add_option("--haze", camera.haze,
+                 "slices: brightness (linear, 0..1) of a wide blur of the clipped picture added "
+                 "after the clip (the lit air around the fire); 0 = none")
+      ->capture_default_str();
+  app.add_option("--haze-radius", camera.haze_radius, "slices: the haze's Gaussian sigma, pixels")
+      ->capture_default_str();
   app.add_option("--scale", scale, "image pixels per cell (1..16)")->capture_default_str();
   int slices = 1;
   double slice_spacing = 0.5;

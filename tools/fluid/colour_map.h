@@ -43,6 +43,17 @@ struct Camera {
   double exposure = 1.0;
   double knee = 0.7;  // 0..1: where the soft clip starts
   double soot = 0.0;  // fuel units for emissivity 1 - 1/e; 0 = every hot cell glows
+  // Light a real camera spreads around bright flame (lens scatter, the hot
+  // gas's own dim envelope): this share of a Gaussian-blurred copy of the
+  // light is added before the soft clip (finish_radiance only). It softens
+  // the outer edge and joins tongues that nearly touch, as on video.
+  double glow = 0.0;
+  double glow_radius = 3.0;  // Gaussian sigma, canvas pixels
+  // The lit air and smoke around a fire: a wide blur of the clipped picture
+  // (so never brighter than `haze` itself, linear) added after the clip. It
+  // gives the flames the dim envelope video shows without joining them.
+  double haze = 0.0;
+  double haze_radius = 10.0;
 };
 double soft_clip(double x, double knee);
 Image render_radiance(const Grid2& temperature, double t_ambient, double t_reference,
@@ -76,7 +87,8 @@ struct RadianceTable {
 void add_radiance(const Grid2& temperature, const Grid2* fuel, const RadianceTable& table,
                   const Camera& camera, const SlicePlacement& at, int canvas_width,
                   int canvas_height, std::vector<float>& canvas);
-// The canvas through the camera's soft clip and the sRGB curve: gray pixels.
+// The canvas with the camera's glow, through its soft clip and the sRGB
+// curve: gray pixels.
 Image finish_radiance(const std::vector<float>& canvas, int width, int height,
                       const Camera& camera);
 

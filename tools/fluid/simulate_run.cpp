@@ -169,6 +169,16 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
     throw std::invalid_argument("exposure: a number in (0, 1e6]");
   if (!(opt.camera.soot >= 0.0) || !std::isfinite(opt.camera.soot))
     throw std::invalid_argument("soot: fuel units >= 0");
+  if (!(opt.camera.glow >= 0.0) || !(opt.camera.glow <= 10.0))
+    throw std::invalid_argument("glow: a number in 0..10");
+  if (!(opt.camera.glow_radius >= 0.5) || !(opt.camera.glow_radius <= 64.0))
+    throw std::invalid_argument("glow-radius: pixels in 0.5..64");
+  if (!(opt.camera.haze >= 0.0) || !(opt.camera.haze <= 1.0))
+    throw std::invalid_argument("haze: a brightness in 0..1");
+  if (!(opt.camera.haze_radius >= 0.5) || !(opt.camera.haze_radius <= 64.0))
+    throw std::invalid_argument("haze-radius: pixels in 0.5..64");
+  if ((opt.camera.glow > 0.0 || opt.camera.haze > 0.0) && opt.slices < 2)
+    throw std::invalid_argument("glow, haze: apply to the canvas of --slices 2 or more");
   if (!(opt.camera.knee >= 0.0) || !(opt.camera.knee < 1.0))
     throw std::invalid_argument("knee: a number in [0, 1)");
   if (opt.slices < 1 || opt.slices > 64) throw std::invalid_argument("slices: 1..64");
