@@ -1,5 +1,5 @@
 # Debian packages with CPack (board/package.sh runs it on a built tree):
-#   candela       the kiosk: candela, candela-record, scenes, built-in models,
+#   candela       the kiosk: candela, candela-record, scenes, stories, built-in models,
 #                 the systemd unit, its user (sysusers.d), the GPIO udev rule
 #                 and the conffile /etc/candela/candela.toml
 #   candela-tool  the offline tools (Eigen, FFTW, libav): kept out of the
@@ -9,6 +9,9 @@
 set(pkg ${CMAKE_SOURCE_DIR}/board/package)
 
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/firmware/scenes/ DESTINATION share/candela/scenes
+        COMPONENT candela FILES_MATCHING PATTERN "*.toml")
+# The example stories (also built in: story = "builtin:NAME"), as files to copy and edit.
+install(DIRECTORY ${CMAKE_SOURCE_DIR}/firmware/stories/ DESTINATION share/candela/stories
         COMPONENT candela FILES_MATCHING PATTERN "*.toml")
 install(FILES ${CMAKE_SOURCE_DIR}/firmware/models/default.cmodel
               ${CMAKE_SOURCE_DIR}/firmware/models/fire.cmodel

@@ -13,6 +13,7 @@
 #include "gl/math.h"
 #include "input/input_spec.h"
 #include "scene/element.h"
+#include "scene/toml_text.h"
 #include "wind/wind_field.h"
 
 namespace candela {
@@ -40,9 +41,8 @@ struct SceneDesc {
   std::vector<InputSpec> inputs;  // [[input]]: GPIO sensors, camera (firmware/input)
 };
 
-// Bounds on what a scene may ask for (README: "Limits"). Deeper TOML nesting
-// would overflow toml++'s stack; more elements would exhaust memory.
-inline constexpr int kMaxSceneNesting = 32;
+// Bounds on what a scene may ask for (README: "Limits"; the nesting bound is in
+// scene/toml_text.h). More elements would exhaust memory.
 inline constexpr size_t kMaxElements = 64;
 inline constexpr unsigned kMaxElementCost = 64;  // sum of ElementSpec::cost()
 
@@ -50,9 +50,6 @@ inline constexpr unsigned kMaxElementCost = 64;  // sum of ElementSpec::cost()
 // regular file within the scene size limit (core/file_read.h).
 SceneDesc load_scene_file(const std::string& path);
 SceneDesc load_scene_text(std::string_view text, const std::string& name);
-// TOML text (a scene, the kiosk's config) parsed by toml++ after the nesting
-// check above; a syntax error is ConfigError(name, "line L, column C", ...).
-toml::table parse_toml_text(std::string_view text, const std::string& name);
 // Built-in scenes ("default", "test-pattern", ...): firmware/scenes/*.toml.
 SceneDesc load_builtin_scene(const std::string& name);
 

@@ -1,6 +1,6 @@
 // Eigen-flames on the GPU (headless llvmpipe): reconstruction against the
 // CPU reference, wind leaning the rendered flame and letting it return, and
-// the fallback when a model cannot be loaded.
+// the fallback when a model cannot be loaded; the story driver.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,6 +16,8 @@
 #include "model/model_writer.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
+#include "story/story_plan.h"
+#include "story/story_player.h"
 #include "support/render_harness.h"
 #include "wind/wind_field.h"
 
@@ -268,6 +270,113 @@ TEST(EigenScenes, ShippedScenesLoad) {
     SCOPED_TRACE(name);
     const SceneDesc d = load_builtin_scene(name);
     EXPECT_GE(d.elements.size(), 1u);
+  }
+}
+
+// The story driver's frames on the GPU are the frames `candela-tool story`
+// writes: the built-in tour planned, played by the driver's StoryPlayer
+// (held frames), reconstructed by the renderer's EigenReconstructor and
+// compared with the tool's CPU reconstruction of the plan, every 50th frame
+// (clip frames, a grown path, the low-passed joint's blends, the walk, the
+// ARP, and across the loop).
+TEST(EigenStory, GpuFramesMatchTheToolsReconstruction) {
+  auto display = headless(64, 64);
+  const auto fire = builtin_eigen_model("fire");
+  const model::FlameModel& m = *fire->model;
+  const story::StoryDesc desc = story::open_story("builtin:fire-tour");
+  const story::StoryPlan plan = story::plan_story(desc, m, desc.seed, true);
+  story::StoryPlayer player(plan, m.components(), Fixed::from_int(1));
+  player.set_crossfade(Fixed{});
+  EigenReconstructor r(stack_of(m.mean), stack_of(m.eigen), StackLayout::kPacked, m.components());
+  const size_t px = m.mean.pixels();
+  std::vector<float> cpu(px);
+  std::vector<uint8_t> gpu(px * 4);
+  double sum = 0, worst = 0;
+  size_t n = 0;
+  int blended = 0, first_blend = -1;
+  for (int k = 0; k < plan.frames() && first_blend < 0; ++k)
+    if (plan.model_frame(k) < 0) first_blend = k;  // a low-passed frame
+  for (int step = 1; step <= plan.frames() + 60; ++step) {
+    player.step();
+    if (step % 50 != 0 && player.frame() != first_blend) continue;
+    const int k = player.frame();
+    ASSERT_EQ(k, step % plan.frames());
+    blended += plan.model_frame(k) < 0;
+    r.reconstruct(player.weights());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, m.width(), m.height(), GL_RGBA, GL_UNSIGNED_BYTE, gpu.data());
+    m.reconstruct({plan.weights_of(k), static_cast<size_t>(plan.components())}, cpu);
+    for (size_t p = 0; p < px; ++p) {
+      const double d = std::abs(gpu[p * 4] - std::clamp(cpu[p], 0.0f, 255.0f));
+      sum += d;
+      worst = std::max(worst, d);
+      ++n;
+    }
+  }
+  std::printf("story frames: mean |GPU - tool| = %.3f, max = %.1f gray levels\n",
+              sum / static_cast<double>(n), worst);
+  EXPECT_GE(blended, 1) << "a low-passed frame was compared";
+  EXPECT_LT(sum / static_cast<double>(n), 1.0);
+  EXPECT_LE(worst, 2.0);
+}
+
+// The story scene renders a burning flame, the same pixels for the same seed.
+TEST(EigenStory, SceneRendersTheSameFramesForTheSameSeed) {
+  const SceneDesc d = load_builtin_scene("eigen-story");
+  const EigenFlameSpec* spec = nullptr;
+  for (const auto& e : d.elements)
+    if (const auto* s = dynamic_cast<const EigenFlameSpec*>(e.spec.get())) spec = s;
+  ASSERT_NE(spec, nullptr);
+  EXPECT_TRUE(spec->story_error.empty()) << spec->story_error;
+  ASSERT_NE(spec->story, nullptr);
+  EXPECT_EQ(spec->settings.driver, EigenDriver::kStory);
+  EXPECT_EQ(spec->model->source, "<built-in fire>");
+  std::vector<test::Frame> runs;
+  for (int i = 0; i < 2; ++i) {
+    test::RenderHarness h(load_builtin_scene("eigen-story"), 96, 72);
+    h.run(40);
+    runs.push_back(h.read());
+  }
+  EXPECT_EQ(runs[0].rgba, runs[1].rgba);
+  double brightest = 0;
+  for (int y = 0; y < runs[0].height; ++y)
+    for (int x = 0; x < runs[0].width; ++x) brightest = std::max(brightest, runs[0].luma(x, y));
+  EXPECT_GT(brightest, 80);
+}
+
+// A story that cannot be planned is reported (scene key, story file, story
+// key) and the element walks the story model's graph instead: still burning.
+TEST(EigenStory, BrokenStoryIsReportedAndTheGraphWalkPlays) {
+  const std::string dir = std::string(CANDELA_SOURCE_DIR) + "/tests/eigenflame/data";
+  const SceneDesc desc = load_scene_file(dir + "/bad-story.toml");
+  const auto* spec = dynamic_cast<const EigenFlameSpec*>(desc.elements[0].spec.get());
+  ASSERT_NE(spec, nullptr);
+  EXPECT_NE(spec->story_error.find("element[0].story"), std::string::npos) << spec->story_error;
+  EXPECT_NE(spec->story_error.find("bad-clip.story.toml: segment[1].clip"), std::string::npos)
+      << spec->story_error;
+  EXPECT_EQ(spec->settings.driver, EigenDriver::kGraph);
+  EXPECT_EQ(spec->model->source, "<built-in fire>");
+  EXPECT_FALSE(scene_problems(desc).empty());  // --check fails on it
+  test::RenderHarness h(load_scene_file(dir + "/bad-story.toml"), 160, 120);
+  h.run(30);
+  const test::Frame f = h.read();
+  double brightest = 0;
+  for (int y = 0; y < f.height; ++y)
+    for (int x = 0; x < f.width; ++x) brightest = std::max(brightest, f.luma(x, y));
+  EXPECT_GT(brightest, 60);
+  // Keys that contradict a story are refused outright.
+  for (const auto& [text, key] :
+       {std::pair<const char*, const char*>{"story = \"builtin:fire-tour\"\ndriver = \"arp\"\n",
+                                            "element[0].driver"},
+        {"story = \"builtin:fire-tour\"\nmodel = \"builtin:fire\"\n", "element[0].model"},
+        {"driver = \"story\"\n", "element[0].story"}}) {
+    try {
+      load_scene_text(std::string("[[element]]\nkind = \"eigenflame\"\n") + text, "<s>");
+      ADD_FAILURE() << text;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("<s>: ") + key), std::string::npos)
+          << e.what();
+    }
   }
 }
 

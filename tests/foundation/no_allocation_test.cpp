@@ -35,7 +35,8 @@ namespace {
 
 // The scenes whose frame loop must be allocation-free. Later element kinds
 // add their scenes here.
-const char* const kScenes[] = {"test-pattern", "default", "eigen-fireplace", "eigen-candle"};
+const char* const kScenes[] = {"test-pattern", "default", "eigen-fireplace", "eigen-candle",
+                               "eigen-story"};
 
 TEST(FrameLoop, NoHeapAllocationPerFrame) {
 #if defined(__SANITIZE_ADDRESS__)

@@ -16,7 +16,7 @@ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_CO
   -DCMAKE_CXX_COMPILER=clang++ -DCANDELA_WERROR=ON -DCANDELA_BUILD_BENCH=OFF -DCANDELA_NOISE_TOOL="$tool" >/dev/null
 # target:corpus folder
 targets="model_reader:model scene_reader:scene noise_table:noise control_command:control
-  dataset_manifest:manifest"
+  dataset_manifest:manifest story_reader:story"
 cmake --build build-fuzz --target $(for t in $targets; do printf '%s_fuzz ' "${t%%:*}"; done)
 status=0
 for entry in $targets; do

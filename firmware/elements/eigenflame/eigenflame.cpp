@@ -14,6 +14,8 @@
 #include "gl/program.h"
 #include "model/flame_model.h"
 #include "scene/params.h"
+#include "story/story_plan.h"
+#include "story/story_player.h"
 #include "wind/wind_field.h"
 
 namespace candela::eigen_models {
@@ -116,7 +118,7 @@ std::vector<Vec3> parse_transfer(ParamReader& r) {
 class EigenFlame final : public Element {
  public:
   EigenFlame(const EigenFlameSettings& s, std::shared_ptr<const EigenModel> model, Vec3 position,
-             uint64_t seed)
+             uint64_t seed, std::shared_ptr<const story::StoryDesc> story = nullptr)
       : s_(s), model_(std::move(model)), position_(position) {
     const model::FlameModel& m = *model_->model;
     const double fps = m.clips.empty() ? 30.0 : m.clips.front().fps;
@@ -134,7 +136,15 @@ class EigenFlame final : public Element {
     look.edge_fade = s.edge_fade;
     const int e = s.components > 0 ? s.components : EigenReconstructor::kMaxComponents;
 
-    if (s.driver == EigenDriver::kArp && m.has_learning_flames) {
+    if (s.driver == EigenDriver::kStory && story) {
+      // The whole story planned now (its own seed, else the element's); the
+      // runtime always loops it, through the first segment's transition.
+      const story::StoryPlan plan =
+          story::plan_story(*story, m, story->has_seed ? story->seed : seed, true);
+      story_ = std::make_unique<story::StoryPlayer>(plan, m.components(), Fixed::from_ratio(1, 2));
+      renderer_ = std::make_unique<EigenRenderer>(stack_of(m.mean), stack_of(m.eigen), s.layout, e,
+                                                  look, story_->weights());
+    } else if (s.driver == EigenDriver::kArp && m.has_learning_flames) {
       const auto& L = m.flames;
       shape_ = std::make_unique<FlameShapeModel>(FlameShapeModel::from(m));
       arp_ = std::make_unique<ArpProcess>(ArpView::of(L), seed);
@@ -182,7 +192,11 @@ class EigenFlame final : public Element {
     wind_x_ += (w.x - wind_x_) * k;  // the wind the flame has caught up with (arp bending)
     time_ = step.time;
     const Fixed per_step = fps_ * step.dt;
-    if (player_) {
+    if (story_) {
+      story_->set_rate(per_step);
+      story_->set_crossfade(s_.crossfade);
+      story_->step();
+    } else if (player_) {
       player_->set_rate(per_step);
       player_->set_crossfade(s_.crossfade);
       player_->step(lean_);
@@ -244,6 +258,7 @@ class EigenFlame final : public Element {
   Vec3 position_;
   Fixed fps_, lean_, phase_, time_, wind_x_;
   std::unique_ptr<GraphPlayer> player_;
+  std::unique_ptr<story::StoryPlayer> story_;
   std::unique_ptr<ArpProcess> arp_;
   std::unique_ptr<FlameShapeModel> shape_;
   std::array<float, ArpProcess::kMaxDim> prev_{}, next_{}, shown_{};
@@ -286,7 +301,7 @@ std::shared_ptr<const EigenModel> default_eigen_model() { return builtin_eigen_m
 
 std::unique_ptr<Element> EigenFlameSpec::create(const SceneContext& context) const {
   try {
-    return std::make_unique<EigenFlame>(settings, model, position, context.seed);
+    return std::make_unique<EigenFlame>(settings, model, position, context.seed, story);
   } catch (const std::exception& e) {
     // A model the reader accepted but this GPU cannot hold (texture size, ...):
     // play the built-in one rather than leave the flame out.
@@ -300,6 +315,8 @@ std::unique_ptr<Element> EigenFlameSpec::create(const SceneContext& context) con
 }
 
 std::string EigenFlameSpec::problem() const {
+  if (!story_error.empty())
+    return story_error + "; playing the graph walk of " + model->source + " instead";
   return model_error.empty() ? model_error : model_error + "; using the built-in default model";
 }
 
@@ -307,10 +324,23 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
   auto spec = std::make_unique<EigenFlameSpec>();
   EigenFlameSettings& s = spec->settings;
   const std::string model_name = r.string("model", "");
+  const std::string story_name = r.string("story", "");
   s.height = static_cast<float>(r.number("height", s.height, 0.001, 100));
   s.widen = static_cast<float>(r.number("widen", s.widen, 0.1, 10));
-  s.driver = r.string("driver", "graph", {"graph", "arp"}) == "arp" ? EigenDriver::kArp
-                                                                    : EigenDriver::kGraph;
+  {
+    const std::string d =
+        r.string("driver", story_name.empty() ? "graph" : "story", {"graph", "arp", "story"});
+    s.driver = d == "arp"     ? EigenDriver::kArp
+               : d == "story" ? EigenDriver::kStory
+                              : EigenDriver::kGraph;
+    if (s.driver == EigenDriver::kStory && story_name.empty())
+      r.fail("story", "expected a story file (story = \"tour.toml\") for driver = \"story\"");
+    if (!story_name.empty() && s.driver != EigenDriver::kStory)
+      r.fail("driver", "expected \"story\" (or no driver) with story = \"" + story_name + "\"");
+    if (!story_name.empty() && !model_name.empty())
+      r.fail("model", "expected no model with story = \"" + story_name +
+                          "\" (the story file names its model)");
+  }
   s.components =
       static_cast<int>(r.integer("components", 0, 0, EigenReconstructor::kMaxComponents));
   s.layout = r.string("layout", "packed", {"packed", "layered"}) == "layered"
@@ -356,6 +386,27 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
   }
   r.finish();
 
+  // A story: read, its model opened and the story planned now (so `candela
+  // --check` reports what is wrong); on failure the element walks the graph
+  // of the story's model if that opened, else of the built-in model.
+  if (!story_name.empty()) {
+    try {
+      auto desc = std::make_shared<story::StoryDesc>(story::open_story(story_name, r.file()));
+      const std::string mp = story::story_model_path(*desc);
+      try {
+        spec->model =
+            mp.rfind("builtin:", 0) == 0 ? builtin_eigen_model(mp.substr(8)) : load_eigen_model(mp);
+      } catch (const std::exception& e) {
+        throw ConfigError(desc->file, "model", e.what());
+      }
+      // Planned once to find its errors (none depends on the seed; create() plans again).
+      story::plan_story(*desc, *spec->model->model, desc->seed, true);
+      spec->story = std::move(desc);
+    } catch (const std::exception& e) {
+      spec->story_error = r.key_path("story") + ": " + e.what();
+      s.driver = EigenDriver::kGraph;
+    }
+  }
   // The model: validated now (so `candela --check` reports it); on failure the
   // element plays the built-in model instead.
   if (!model_name.empty()) {

@@ -9,7 +9,11 @@
 //   position = [0, 0, 0]       # bottom centre of the flame image, world metres
 //   height = 0.5               # world height of the flame image
 //   widen = 1.0                # graph driver: stretch the image sideways (a broader fire)
-//   driver = "graph"           # graph (EigenFires walk) | arp (Learning Flames)
+//   driver = "graph"           # graph (EigenFires walk) | arp (Learning Flames) | story
+//   story = "tour.toml"        # a story file (firmware/story/story_file.h; relative to the
+//                              # scene, or builtin:NAME): its segments and transitions, planned
+//                              # at start-up and looped; implies driver = "story"; the story
+//                              # names the model (no `model` key then)
 //   seed = 7                   # optional; default from the scene's seed
 //   components = 0             # use the first N components (0: all the model has)
 //   layout = "packed"          # packed (4 per texel) | layered (1 per array layer)
@@ -31,7 +35,8 @@
 //
 // A model that cannot be loaded is reported (file, key, what is wrong) when
 // the scene is read (also by `candela --check`) and the element plays the
-// built-in default model instead, so the display never goes dark.
+// built-in default model instead, so the display never goes dark. So does a
+// story that cannot be read or planned (its graph walk plays instead).
 #pragma once
 
 #include <memory>
@@ -43,6 +48,7 @@
 #include "elements/eigenflame/graph_walker.h"
 #include "gl/math.h"
 #include "scene/element.h"
+#include "story/story_file.h"
 
 namespace candela {
 
@@ -65,7 +71,7 @@ std::shared_ptr<const EigenModel> builtin_eigen_model(const std::string& name);
 // Loads and validates a model file; throws model::ModelError / ConfigError.
 std::shared_ptr<const EigenModel> load_eigen_model(const std::string& path);
 
-enum class EigenDriver { kGraph, kArp };
+enum class EigenDriver { kGraph, kArp, kStory };
 
 struct EigenEmbers {
   bool enabled = false;
@@ -103,6 +109,8 @@ class EigenFlameSpec final : public ElementSpec {
   EigenFlameSettings settings;
   std::shared_ptr<const EigenModel> model;  // never null: the default if the named one failed
   std::string model_error;                  // why the named model was not used (empty: it was)
+  std::shared_ptr<const story::StoryDesc> story;  // driver kStory: read and planned once already
+  std::string story_error;                        // why the named story is not played
 };
 
 std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& reader);

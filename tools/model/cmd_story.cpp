@@ -1,0 +1,139 @@
+// candela-tool story STORY --out story.mp4|story.y4m|frames/
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <memory>
+
+#include "core/error.h"
+#include "display/frame_writer.h"
+#include "model/flame_model.h"
+#include "render.h"
+#include "story/story_plan.h"
+#include "subcommand.h"
+
+namespace candela::eigen_models {
+std::string_view find(std::string_view name);
+}
+
+namespace {
+
+namespace cm = candela::model;
+namespace cs = candela::story;
+
+// A model as the story names it: builtin:NAME from the models embedded in
+// candela (the same bytes), else a file.
+cm::FlameModel open_model(const cs::StoryDesc& story) {
+  const std::string path = cs::story_model_path(story);
+  if (path.rfind("builtin:", 0) == 0) {
+    std::string name = path.substr(8);
+    if (name == "candle") name = "default";
+    const auto bytes = candela::eigen_models::find(name + ".cmodel");
+    if (bytes.empty())
+      throw candela::ConfigError(
+          story.file, "model",
+          "expected a built-in model (builtin:candle, builtin:fire), got \"" + story.model + "\"");
+    return cm::FlameModel::from(cm::ModelFile::from_bytes(
+        std::vector<uint8_t>(bytes.begin(), bytes.end()), "<built-in " + name + ">"));
+  }
+  try {
+    return cm::FlameModel::load(path);
+  } catch (const std::exception& e) {
+    throw candela::ConfigError(story.file, "model", e.what());
+  }
+}
+
+int run_story(int argc, char** argv) {
+  CLI::App app{
+      "Plan and render a story file (segments of a model joined by EigenFires transitions), "
+      "printing every joint's seam ratio; fails when one exceeds the bound",
+      "candela-tool story"};
+  std::string path, out;
+  uint64_t seed = 0;
+  float max_seam = 0;
+  bool gray = false, no_render = false;
+  float hue = -1, sat = -1, glow_radius = -1, glow = -1;
+  app.add_option("STORY", path, "story file (TOML), or builtin:NAME (firmware/stories/NAME.toml)")
+      ->required();
+  app.add_option("--out", out, "story.mp4 (ffmpeg), story.y4m, or a folder of PNG frames");
+  app.add_option("--seed", seed, "seed of the walks and the ARP (default: the story's, else 1)");
+  app.add_option("--max-seam", max_seam,
+                 "largest seam ratio allowed at a joint (step across it / the model's median step; "
+                 "default: the model's 99th-percentile step, at least 2)")
+      ->check(CLI::PositiveNumber);
+  app.add_flag("--gray", gray, "write gray frames instead of coloured ones");
+  app.add_flag("--no-render", no_render, "only plan and report the joints");
+  app.add_option("--hue", hue, "hue in degrees (default: the model's, as the runtime)");
+  app.add_option("--saturation", sat, "saturation 0..1 (default: the model's)");
+  app.add_option("--glow-radius", glow_radius,
+                 "glow radius, fraction of the height (default: the model's)");
+  app.add_option("--glow", glow, "glow strength (default: the model's; 0: none)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (out.empty() && !no_render) throw std::invalid_argument("--out: say where (or --no-render)");
+  const cs::StoryDesc story = cs::open_story(path);
+  const cm::FlameModel m = open_model(story);
+  if (!seed) seed = story.has_seed ? story.seed : 1;
+  const cs::StoryPlan plan = cs::plan_story(story, m, seed);
+  if (max_seam <= 0) max_seam = plan.seam_bound();
+  std::printf(
+      "%s: %d frames (%.1f s at %.0f fps), seed %llu; %zu joints; distances over %d components, "
+      "median step %.1f, seam bound %.2f\n",
+      story.file.c_str(), plan.frames(), plan.frames() / plan.fps(), plan.fps(),
+      static_cast<unsigned long long>(seed), plan.joints().size(), plan.distance_components(),
+      plan.median_step(), max_seam);
+  for (const auto& p : plan.pieces())
+    std::printf("  %-22s frames %5d..%-5d largest step inside %.2f\n", p.key.c_str(), p.first,
+                p.first + p.count - 1, p.max_step_ratio);
+  int over = 0;
+  for (const auto& j : plan.joints()) {
+    const bool bad = j.seam_ratio > max_seam;
+    over += bad;
+    std::printf(
+        "  joint %-36s %-7s seam ratio %.2f (a cut: %.2f), %d inserted, frames %d->%d: %s%s\n",
+        j.what.c_str(), cs::method_name(j.method), j.seam_ratio, j.cut_ratio, j.inserted, j.alpha,
+        j.beta, j.how.c_str(), bad ? "  <-- over the bound" : "");
+  }
+  if (!no_render) {
+    const int w = m.width(), h = m.height();
+    auto sink = candela::open_frame_sink(out, w, h, static_cast<int>(std::lround(plan.fps())));
+    std::vector<float> img(m.mean.pixels());
+    std::vector<uint8_t> rgba(static_cast<size_t>(w) * h * 4);
+    for (int i = 0; i < plan.frames(); ++i) {
+      m.reconstruct({plan.weights_of(i), static_cast<size_t>(plan.components())}, img);
+      const candela::Image pic =
+          gray ? candela::tools::gray_image(img.data(), w, h)
+               : candela::tools::colourise(img.data(), w, h, hue >= 0 ? hue : m.colour.hue,
+                                           sat >= 0 ? sat : m.colour.saturation,
+                                           glow_radius >= 0 ? glow_radius : m.colour.glow_radius,
+                                           glow >= 0 ? glow : m.colour.glow_strength,
+                                           m.colour.black_level);
+      // The sink takes RGBA rows bottom to top (as glReadPixels gives them).
+      for (int y = 0; y < h; ++y) {
+        const uint8_t* src = pic.row(y);
+        uint8_t* dst = rgba.data() + static_cast<size_t>(h - 1 - y) * w * 4;
+        for (int x = 0; x < w; ++x)
+          for (int c = 0; c < 4; ++c)
+            dst[4 * x + c] = c == 3 ? 255 : src[pic.channels == 1 ? x : 3 * x + c];
+      }
+      sink->write(rgba.data());
+    }
+    sink->close();
+    std::printf("rendered %d frames into %s\n", plan.frames(), out.c_str());
+  }
+  if (over) {
+    std::fflush(stdout);  // the report first, then why it failed
+    std::fprintf(stderr,
+                 "candela-tool story: %s: %d joint(s) with a seam ratio over %.2f (the step "
+                 "across the joint is that many ordinary steps): choose another transition\n",
+                 story.file.c_str(), over, max_seam);
+    return 3;
+  }
+  return 0;
+}
+
+const candela::tool::Registration reg{"story", "plan and render a story of clips and transitions",
+                                      run_story};
+
+}  // namespace
