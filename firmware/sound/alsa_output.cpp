@@ -60,6 +60,7 @@ class AlsaOutput final : public SoundOutput {
     st.periods = periods_.load(std::memory_order_relaxed);
     st.underruns = underruns_.load(std::memory_order_relaxed);
     st.device_open = open_.load(std::memory_order_relaxed);
+    st.open_attempts = attempts_.load(std::memory_order_acquire);
     return st;
   }
 
@@ -114,6 +115,7 @@ class AlsaOutput final : public SoundOutput {
                    static_cast<unsigned long>(buffer));
         reported_ = false;
         open_.store(true, std::memory_order_relaxed);
+        attempts_.fetch_add(1, std::memory_order_release);
         return true;
       }
       snd_pcm_close(pcm);
@@ -124,6 +126,7 @@ class AlsaOutput final : public SoundOutput {
           "every 2 s",
           dev, what, snd_strerror(rc));
     reported_ = true;
+    attempts_.fetch_add(1, std::memory_order_release);  // after the log line
     return false;
   }
 
@@ -208,6 +211,7 @@ class AlsaOutput final : public SoundOutput {
   CueRing ring_;
   std::atomic<uint64_t> steps_{0}, periods_{0}, underruns_{0};
   std::atomic<bool> open_{false};
+  std::atomic<uint64_t> attempts_{0};
   std::atomic<bool> stop_{false};
   std::mutex mu_;  // the 2 s retry wait only; never taken while playing
   std::condition_variable cv_;

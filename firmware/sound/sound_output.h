@@ -22,10 +22,11 @@
 namespace candela {
 
 struct SoundStats {
-  uint64_t steps = 0;      // steps rendered
-  uint64_t periods = 0;    // live: 20 ms periods written to the device
-  uint64_t underruns = 0;  // live: times the device ran dry (recovered)
-  uint64_t frames = 0;     // recording: sample frames written
+  uint64_t steps = 0;          // steps rendered
+  uint64_t periods = 0;        // live: 20 ms periods written to the device
+  uint64_t underruns = 0;      // live: times the device ran dry (recovered)
+  uint64_t frames = 0;         // recording: sample frames written
+  uint64_t open_attempts = 0;  // live: times the device was tried
   bool device_open = false;
 };
 

@@ -25,6 +25,7 @@ void Whoosh::set_wind(float wind) {
 }
 
 void Whoosh::render(float* out, int n) {
+  if (target_ == 0 && gain_.value() < 1e-7f) return;  // calm air: no work
   for (int i = 0; i < n; ++i) out[i] += gain_.low(target_) * band_.run(noise_.next()) * 2.5f;
 }
 
