@@ -191,7 +191,7 @@ class AlsaOutput final : public SoundOutput {
         }
         done += n;
       }
-      periods_.fetch_add(1, std::memory_order_relaxed);
+      if (pcm_) periods_.fetch_add(1, std::memory_order_relaxed);
     }
     close_device();
   }
