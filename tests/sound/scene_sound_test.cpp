@@ -4,14 +4,39 @@
 // configured rate times its activity. The scene steps by hand (no frames
 // drawn); the render harness gives it its GL context.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <new>
+#include <string>
 #include <vector>
 
+#include "app/frame_loop.h"
 #include "core/clock.h"
+#include "sound/sound_output.h"
 #include "sound/sound_synth.h"
 #include "support/render_harness.h"
+
+// operator new counted, as tests/foundation/no_allocation_test.cpp does.
+namespace {
+std::atomic<bool> g_counting{false};
+std::atomic<long> g_allocations{0};
+}  // namespace
+#if !defined(__SANITIZE_ADDRESS__)  // ASan brings its own; the normal build counts
+void* operator new(std::size_t n) {
+  if (g_counting.load(std::memory_order_relaxed))
+    g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#endif
 
 namespace candela {
 namespace {
@@ -142,6 +167,42 @@ TEST(SceneSound, HearthCracklesAtTheConfiguredRate) {
   EXPECT_GT(activity, 0.7);
   EXPECT_LT(activity, 1.3);
   EXPECT_NEAR(static_cast<double>(synth.fire_events().crackles()), asked, 4 * std::sqrt(asked));
+}
+
+// The frame loop with a recording attached, as `candela --out` runs it: one
+// cue per animation step reaches the audio thread (the .wav holds exactly
+// 800 samples per step), and the loop still allocates nothing.
+TEST(SceneSound, FrameLoopFeedsOneStepOfSoundPerStep) {
+  DisplayOptions o;
+  o.kind = "headless";
+  o.width = 96;
+  o.height = 54;
+  auto display = open_display(o);
+  const SceneDesc desc = load_builtin_scene("perlin-fireplace");
+  ASSERT_TRUE(desc.sound.enabled);
+  Scene scene(desc);
+  const std::string path =
+      ::testing::TempDir() + "candela-loop-" + std::to_string(getpid()) + ".wav";
+  auto sound = open_sound_recording(desc.sound, desc.steps_per_second, 1, path);
+  LoopSettings s;
+  s.sound = sound.get();
+  s.max_frames = 10;
+  const LoopResult warm = run_frame_loop(*display, scene, s);
+  s.max_frames = 90;
+  g_allocations = 0;
+  g_counting = true;
+  const LoopResult r = run_frame_loop(*display, scene, s);
+  g_counting = false;
+  sound->finish();
+#if !defined(__SANITIZE_ADDRESS__)
+  EXPECT_EQ(g_allocations.load(), 0) << "operator new called during the frame loop with sound";
+#endif
+  const uint64_t steps = warm.steps + r.steps;
+  EXPECT_EQ(sound->stats().steps, steps);
+  std::ifstream f(path, std::ios::binary);
+  const std::vector<char> wav{std::istreambuf_iterator<char>(f), {}};
+  EXPECT_EQ(wav.size(), 44 + steps * 800 * 2);
+  std::remove(path.c_str());
 }
 
 }  // namespace
