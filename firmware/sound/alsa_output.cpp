@@ -7,6 +7,8 @@
 #include <array>
 #include <chrono>
 #include <condition_variable>
+#include <cstdarg>
+#include <cstdio>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -23,6 +25,19 @@ constexpr int kPeriodFrames = SoundSynth::kSampleRate / 50;  // 20 ms
 constexpr int kMaxChannels = 8;
 constexpr uint32_t kMaxBacklog = 2;  // cues waiting beyond this are folded in (latency bound)
 
+// libasound prints its own errors to stderr (8 lines for a missing card, at
+// every 2 s retry): they go to the debug log; our one line says what failed.
+void alsa_message(const char* file, int line, const char* function, int err, const char* fmt, ...) {
+  if (log_level() > LogLevel::kDebug) return;
+  char text[256];
+  va_list ap;
+  va_start(ap, fmt);
+  std::vsnprintf(text, sizeof text, fmt, ap);
+  va_end(ap);
+  LOG_DEBUG("ALSA lib %s:%d (%s): %s%s%s", file, line, function, text, err ? ": " : "",
+            err ? snd_strerror(err) : "");
+}
+
 class AlsaOutput final : public SoundOutput {
  public:
   AlsaOutput(const SoundSettings& s, int sps, uint64_t seed)
@@ -30,6 +45,7 @@ class AlsaOutput final : public SoundOutput {
         synth_(s, sps, seed),
         step_(SoundSynth::kMaxStepSamples),
         period_(static_cast<size_t>(kPeriodFrames) * kMaxChannels) {
+    snd_lib_error_set_handler(alsa_message);
     thread_ = std::thread([this] { run(); });
   }
   ~AlsaOutput() override { finish(); }
