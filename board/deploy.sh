@@ -2,7 +2,7 @@
 # Installs Candela as a kiosk on this board (Raspberry Pi OS / Debian 12)
 # without a package (board/package.sh makes the .deb, the usual way): binary,
 # scenes and models under /usr/local, /etc/candela/candela.toml, a system user
-# in the video/render/input/gpio groups, the GPIO udev rule, and the systemd
+# in the video/render/input/gpio/audio groups, the GPIO udev rule, and the systemd
 # unit that starts candela at boot and restarts it if it stops.
 # Run from a built checkout, as root (or with sudo):
 #   board/deploy.sh [--build-dir build] [--no-start] [--disable-desktop]
@@ -69,7 +69,7 @@ fi
 # above gives it /dev/gpiochip*), as the package's sysusers.d file does.
 getent group gpio >/dev/null || groupadd --system gpio
 groups=()
-for g in video render input gpio; do getent group "$g" >/dev/null && groups+=("$g"); done
+for g in video render input gpio audio; do getent group "$g" >/dev/null && groups+=("$g"); done
 group_list=$(IFS=,; echo "${groups[*]}")
 if ! id candela >/dev/null 2>&1; then
   useradd --system --user-group --home-dir /nonexistent --no-create-home --shell /usr/sbin/nologin \

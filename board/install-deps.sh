@@ -12,6 +12,7 @@ export DEBIAN_FRONTEND=noninteractive
 runtime=(
   libegl1 libgles2 libgbm1 libdrm2 libpng16-16 libfftw3-single3
   libegl-mesa0 libgl1-mesa-dri libgpiod2 libx11-6
+  libasound2  # sound (ALSA)
   libcamera-ipa  # pulls in the libcamera library of the release (0.0.3 on bookworm)
 )
 build=(
@@ -19,6 +20,7 @@ build=(
   libegl-dev libgles-dev libdrm-dev libgbm-dev libx11-dev
   libtomlplusplus-dev libcli11-dev libpng-dev libfftw3-dev
   libeigen3-dev libgpiod-dev gpiod
+  libasound2-dev
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev zlib1g-dev

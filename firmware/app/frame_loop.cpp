@@ -7,6 +7,7 @@
 #include "app/sd_notify.h"
 #include "core/clock.h"
 #include "input/input_hub.h"
+#include "sound/sound_output.h"
 
 namespace candela {
 
@@ -27,6 +28,7 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
     step.step = clock.steps();
     step.time = clock.seconds();
     scene.update(step);
+    if (s.sound) s.sound->push(scene.sound_cue());
     clock.tick();
   };
   // Frame 0 shows the state after the first step.

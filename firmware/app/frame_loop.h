@@ -15,6 +15,7 @@ namespace candela {
 
 class InputHub;
 class SdNotify;
+class SoundOutput;
 
 struct LoopSettings {
   uint64_t max_frames = 0;  // 0: until quit
@@ -27,8 +28,9 @@ struct LoopSettings {
   bool realtime = false;
   const std::atomic<bool>* stop = nullptr;  // set by a signal handler
   FrameStats* stats = nullptr;
-  InputHub* inputs = nullptr;  // sensors, camera, control socket: drained once per frame
-  SdNotify* notify = nullptr;  // systemd READY/WATCHDOG/STATUS after presented frames
+  InputHub* inputs = nullptr;    // sensors, camera, control socket: drained once per frame
+  SdNotify* notify = nullptr;    // systemd READY/WATCHDOG/STATUS after presented frames
+  SoundOutput* sound = nullptr;  // gets every step's Scene::sound_cue() (sound/sound_output.h)
 };
 
 struct LoopResult {

@@ -17,6 +17,7 @@
 #include "input/input_hub.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
+#include "sound/sound_output.h"
 
 namespace {
 std::atomic<bool> g_stop{false};
@@ -93,8 +94,25 @@ int main(int argc, char** argv) {
 
   // Before any thread starts (it unsets the variables it reads).
   SdNotify notify = SdNotify::from_environment(desc.file);
+  const bool sound_on = desc.sound.enabled && !opt.mute;
+  if (sound_on && !opt.display.out_path.empty())
+    opt.display.sound_path = sound_path_for(opt.display.out_path);
   try {
     auto display = open_display(opt.display);
+    // Headless writing frames: the sound goes beside them (muxed into a
+    // video); a screen: ALSA. Headless without --out: no sound.
+    std::unique_ptr<SoundOutput> sound;
+    if (sound_on) {
+      const uint64_t seed =
+          desc.sound.seed ? desc.sound.seed : (opt.seed ? opt.seed : desc.seed) ^ 0x736f756e64ULL;
+      if (display->name() != "headless") {
+        sound = open_sound_device(desc.sound, desc.steps_per_second, seed);
+      } else if (!opt.display.out_path.empty()) {
+        sound =
+            open_sound_recording(desc.sound, desc.steps_per_second, seed, opt.display.sound_path);
+        LOG_INFO("sound: writing %s", opt.display.sound_path.c_str());
+      }
+    }
     auto scene_ptr = std::make_unique<Scene>(desc, opt.seed, &g_stop);
     if (!g_stop && !desc.elements.empty() && scene_ptr->element_count() == 0 &&
         desc.file != "<built-in default>") {
@@ -107,6 +125,7 @@ int main(int argc, char** argv) {
     Scene& scene = *scene_ptr;
     if (g_stop) {
       LOG_INFO("stopped by %s while the scene was built", signal_name(g_signal));
+      if (sound) sound->finish();
       display->finish();
       return 0;
     }
@@ -122,10 +141,12 @@ int main(int argc, char** argv) {
     inputs.start();
     ls.inputs = &inputs;
     ls.notify = &notify;
+    ls.sound = sound.get();
     const double cpu0 = process_cpu_seconds();
     const LoopResult r = run_frame_loop(*display, scene, ls);
     notify.stopping();
     const double cpu = process_cpu_seconds() - cpu0;
+    if (sound) sound->finish();  // the .wav complete before the video muxes it
     display->finish();
     if (g_stop) LOG_INFO("stopped by %s; outputs finished", signal_name(g_signal));
     LOG_INFO("%llu frames, %llu steps", static_cast<unsigned long long>(r.frames),

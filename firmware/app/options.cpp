@@ -72,6 +72,8 @@ int parse_options(int argc, char** argv, Options& o) {
   app.add_flag("--realtime", o.realtime,
                "Headless: hold --fps by the wall clock and animate in real time, like a screen "
                "(default: as fast as possible, one step per frame)");
+  app.add_flag("--mute", o.mute,
+               "No sound, whatever the scene's [sound] says (no ALSA device, no .wav)");
   app.add_flag("--bench", o.bench, "Print frame-time statistics as one JSON line after the run");
   app.add_flag("--list-elements", o.list_elements, "List the kinds of scene element and exit");
   app.add_option("--log-level", o.log_level, "debug, info, warn or error")

@@ -17,6 +17,7 @@ struct Options {
   bool bench = false;
   bool realtime = false;
   bool list_elements = false;
+  bool mute = false;    // no sound, whatever the scene's [sound] says
   uint64_t frames = 0;  // 0: run until quit
   uint64_t seed = 0;    // 0: the scene's seed
   std::string log_level = "info";

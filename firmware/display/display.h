@@ -26,7 +26,10 @@ struct DisplayOptions {
   int refresh_hz = 0;      // DRM mode choice; 0: preferred
   std::string drm_device;  // e.g. /dev/dri/card1; empty: the first card with a connected connector
   std::string out_path;    // headless: PNG folder, .y4m or .mp4; empty: render only
-  int fps = 60;            // the rate frames are written at (headless video)
+  // Headless video through ffmpeg (.mp4, .mkv, .webm): the run's sound (a
+  // .wav) to mux into it once both are finished; empty or no samples: none.
+  std::string sound_path;
+  int fps = 60;  // the rate frames are written at (headless video)
   bool vsync = true;
 };
 

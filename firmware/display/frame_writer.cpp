@@ -93,10 +93,49 @@ class Y4mSink final : public FrameSink {
   FILE* f_ = nullptr;
 };
 
+// Starts ffmpeg with `args` (stdin from stdin_fd unless -1; close_fd closed
+// in the child unless -1). ffmpeg gets its own process group, so Ctrl-C or a
+// SIGHUP to the terminal's group reaches candela only: candela stops, closes
+// the pipe and ffmpeg finishes the file (writes the mp4's moov) instead of
+// dying half-way. SIGPIPE back to default for ffmpeg (candela ignores it).
+// Returns posix_spawnp's status (0: started).
+int spawn_ffmpeg(std::vector<std::string>& args, int stdin_fd, int close_fd, pid_t* pid) {
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  if (stdin_fd >= 0) posix_spawn_file_actions_adddup2(&fa, stdin_fd, 0);
+  if (close_fd >= 0) posix_spawn_file_actions_addclose(&fa, close_fd);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t def;
+  sigemptyset(&def);
+  sigaddset(&def, SIGPIPE);
+  sigaddset(&def, SIGINT);
+  sigaddset(&def, SIGTERM);
+  sigaddset(&def, SIGHUP);
+  posix_spawnattr_setsigdefault(&attr, &def);
+  posix_spawnattr_setpgroup(&attr, 0);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF);
+  const int rc = posix_spawnp(pid, "ffmpeg", &fa, &attr, argv.data(), environ);
+  posix_spawnattr_destroy(&attr);
+  posix_spawn_file_actions_destroy(&fa);
+  return rc;
+}
+
+// Waits for a child; true if it exited with status 0.
+bool wait_ok(pid_t pid) {
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
 class FfmpegSink final : public FrameSink {
  public:
-  FfmpegSink(const std::string& path, int w, int h, int fps)
-      : path_(path), bytes_(static_cast<size_t>(w) * h * 4) {
+  FfmpegSink(const std::string& path, int w, int h, int fps, const std::string& sound_path)
+      : path_(path), sound_path_(sound_path), bytes_(static_cast<size_t>(w) * h * 4) {
     int fds[2];
     if (pipe(fds) != 0) throw RuntimeError(path + ": pipe failed");
     const std::string size = std::to_string(w) + "x" + std::to_string(h);
@@ -125,31 +164,7 @@ class FfmpegSink final : public FrameSink {
                                      "-crf",
                                      "18",
                                      path};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_adddup2(&fa, fds[0], 0);
-    posix_spawn_file_actions_addclose(&fa, fds[1]);
-    // ffmpeg gets its own process group, so Ctrl-C or a SIGHUP to the
-    // terminal's group reaches candela only: candela stops, closes the pipe
-    // and ffmpeg finishes the file (writes the mp4's moov) instead of dying
-    // half-way. SIGPIPE back to default for ffmpeg (candela ignores it).
-    posix_spawnattr_t attr;
-    posix_spawnattr_init(&attr);
-    sigset_t def;
-    sigemptyset(&def);
-    sigaddset(&def, SIGPIPE);
-    sigaddset(&def, SIGINT);
-    sigaddset(&def, SIGTERM);
-    sigaddset(&def, SIGHUP);
-    posix_spawnattr_setsigdefault(&attr, &def);
-    posix_spawnattr_setpgroup(&attr, 0);
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF);
-    const int rc = posix_spawnp(&pid_, "ffmpeg", &fa, &attr, argv.data(), environ);
-    posix_spawnattr_destroy(&attr);
-    posix_spawn_file_actions_destroy(&fa);
+    const int rc = spawn_ffmpeg(args, fds[0], fds[1], &pid_);
     ::close(fds[0]);
     if (rc != 0) {
       ::close(fds[1]);
@@ -180,15 +195,52 @@ class FfmpegSink final : public FrameSink {
     if (fd_ < 0) return;
     ::close(fd_);
     fd_ = -1;
-    int status = 0;
-    while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
-    }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-      throw RuntimeError(path_ + ": ffmpeg failed to encode the video");
+    if (!wait_ok(pid_)) throw RuntimeError(path_ + ": ffmpeg failed to encode the video");
+    mux_sound();
   }
 
  private:
+  // The finished video + the run's .wav -> the video with sound (see open_frame_sink).
+  void mux_sound() {
+    struct stat st {};
+    if (sound_path_.empty() || stat(sound_path_.c_str(), &st) != 0 || st.st_size <= 44) return;
+    const size_t dot = path_.rfind('.');
+    const std::string ext = path_.substr(dot);
+    const std::string tmp = path_.substr(0, dot) + ".muxing" + ext;
+    std::vector<std::string> args = {"ffmpeg",
+                                     "-hide_banner",
+                                     "-loglevel",
+                                     "error",
+                                     "-y",
+                                     "-i",
+                                     path_,
+                                     "-i",
+                                     sound_path_,
+                                     "-map",
+                                     "0:v:0",
+                                     "-map",
+                                     "1:a:0",
+                                     "-c:v",
+                                     "copy",
+                                     "-c:a",
+                                     ext == ".webm" ? "libopus" : "aac",
+                                     "-b:a",
+                                     "160k",
+                                     tmp};
+    pid_t pid = -1;
+    const int rc = spawn_ffmpeg(args, -1, -1, &pid);
+    if (rc != 0 || !wait_ok(pid) || std::rename(tmp.c_str(), path_.c_str()) != 0) {
+      unlink(tmp.c_str());
+      throw RuntimeError(path_ +
+                         ": ffmpeg could not add the sound; the video (silent) is there and "
+                         "its sound is " +
+                         sound_path_);
+    }
+    unlink(sound_path_.c_str());
+  }
+
   std::string path_;
+  std::string sound_path_;
   size_t bytes_;
   pid_t pid_ = -1;
   int fd_ = -1;
@@ -196,10 +248,11 @@ class FfmpegSink final : public FrameSink {
 
 }  // namespace
 
-std::unique_ptr<FrameSink> open_frame_sink(const std::string& path, int w, int h, int fps) {
+std::unique_ptr<FrameSink> open_frame_sink(const std::string& path, int w, int h, int fps,
+                                           const std::string& sound_path) {
   if (ends_with(path, ".y4m")) return std::make_unique<Y4mSink>(path, w, h, fps);
   if (ends_with(path, ".mp4") || ends_with(path, ".mkv") || ends_with(path, ".webm"))
-    return std::make_unique<FfmpegSink>(path, w, h, fps);
+    return std::make_unique<FfmpegSink>(path, w, h, fps, sound_path);
   return std::make_unique<PngFolderSink>(path, w, h);
 }
 

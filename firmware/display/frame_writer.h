@@ -24,7 +24,12 @@ class FrameSink {
 
 // Chooses by path: "*.y4m", "*.mp4" (needs ffmpeg on PATH), else a folder of
 // frame_000000.png ... Throws RuntimeError naming the path and the problem.
-std::unique_ptr<FrameSink> open_frame_sink(const std::string& path, int width, int height, int fps);
+// `sound_path` (ffmpeg videos only): a .wav that close() muxes into the
+// finished video (a second ffmpeg run, video stream copied, AAC or Opus
+// audio, into a temporary file renamed over the video; the .wav is then
+// removed). Skipped when the .wav is missing or holds no samples.
+std::unique_ptr<FrameSink> open_frame_sink(const std::string& path, int width, int height, int fps,
+                                           const std::string& sound_path = {});
 
 class AsyncFrameWriter {
  public:

@@ -43,7 +43,7 @@ class HeadlessDisplay final : public Display {
       throw RuntimeError("headless: offscreen framebuffer incomplete");
     if (!o.out_path.empty()) {
       writer_ = std::make_unique<AsyncFrameWriter>(
-          open_frame_sink(o.out_path, width_, height_, o.fps), width_, height_);
+          open_frame_sink(o.out_path, width_, height_, o.fps, o.sound_path), width_, height_);
       LOG_INFO("headless: %dx%d, writing frames to %s", width_, height_, o.out_path.c_str());
     } else {
       LOG_INFO("headless: %dx%d, not writing frames", width_, height_);

@@ -13,6 +13,7 @@
 
 #include "core/fixed.h"
 #include "gl/math.h"
+#include "sound/sound_cue.h"
 
 namespace candela {
 
@@ -54,6 +55,12 @@ class Element {
   // How many candles this element shows alight (the control socket's
   // `state`); -1: it has no candles. Called once per frame: no allocation.
   virtual int candles_lit() const { return -1; }
+  // What this step sounds like (sound/sound_cue.h). The scene calls it once
+  // per animation step, right after this element's update(), with one cue
+  // it cleared before the step and shares among all elements: add to it
+  // (fire, activity, counts) or raise it (wind); never clear it. Called
+  // whether or not the scene plays sound; no allocation, no GL. Default: silent.
+  virtual void add_sound_cue(SoundCue& /*cue*/) const {}
 };
 
 class ElementSpec {

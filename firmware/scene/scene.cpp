@@ -38,7 +38,11 @@ void Scene::update(const StepContext& step) {
   wind_.update(step);
   StepContext s = step;
   s.wind = &wind_;
-  for (auto& e : elements_) e->update(s);
+  sound_cue_ = SoundCue{};
+  for (auto& e : elements_) {
+    e->update(s);
+    e->add_sound_cue(sound_cue_);
+  }
 }
 
 void Scene::draw(FrameContext& frame) {

@@ -30,6 +30,8 @@ class Scene : public DisplayEvents {
   size_t failed_elements() const { return failed_; }
   // Candles alight over all elements; -1 if no element has candles.
   int candles_lit() const;
+  // What the last update() sounded like: every element's add_sound_cue().
+  const SoundCue& sound_cue() const { return sound_cue_; }
 
  private:
   Vec3 background_;
@@ -37,6 +39,7 @@ class Scene : public DisplayEvents {
   WindField wind_;
   std::vector<std::unique_ptr<Element>> elements_;
   size_t failed_ = 0;
+  SoundCue sound_cue_;
 };
 
 }  // namespace candela

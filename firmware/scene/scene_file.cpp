@@ -62,6 +62,10 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
   ParamReader wind = top.table("wind");
   scene.wind = parse_wind(wind);
 
+  const bool has_sound = top.has("sound");
+  ParamReader sound = top.table("sound");
+  scene.sound = parse_sound(sound, has_sound);
+
   const toml::node* elems = root.get("element");
   top.consume("element");
   if (elems) {

@@ -14,6 +14,7 @@
 #include "input/input_spec.h"
 #include "scene/element.h"
 #include "scene/toml_text.h"
+#include "sound/sound_settings.h"
 #include "wind/wind_field.h"
 
 namespace candela {
@@ -32,6 +33,7 @@ struct SceneDesc {
   Vec3 background{0.02f, 0.015f, 0.012f};
   CameraDesc camera;
   WindSpec wind;
+  SoundSettings sound;  // [sound]: off unless the scene has the table
   struct Entry {
     std::string kind;
     std::string name;

@@ -165,6 +165,24 @@ class Candles final : public Element {
     for (const auto& r : rigs_) n += r.state().lit;
     return n;
   }
+  // Silent while calm: a puff for each candle that went out this step, a
+  // sputter share for each flame clinging to its wick.
+  void add_sound_cue(SoundCue& cue) const override {
+    int out = 0, stuck = 0, lit = 0;
+    Fixed wind;
+    for (const auto& r : rigs_) {
+      const CandleState& st = r.state();
+      out += st.out_steps == 0;
+      stuck += st.lit && st.stuck;
+      lit += st.lit;
+      wind = std::max(wind, st.wind_speed);
+    }
+    const auto add = [](uint16_t& c, int n) { c = static_cast<uint16_t>(std::min(0xffff, c + n)); };
+    add(cue.blowouts, out);
+    add(cue.sputters, stuck);
+    add(cue.lit, lit);
+    cue.wind = std::max(cue.wind, wind);
+  }
 
  private:
   void prepare(const FrameContext& frame);

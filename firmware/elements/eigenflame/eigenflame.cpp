@@ -214,6 +214,10 @@ class EigenFlame final : public Element {
     }
   }
 
+  // Sound: the wind at the flames (a gust's whoosh); the fire's own sound
+  // comes from the hearth it burns on.
+  void add_sound_cue(SoundCue& cue) const override { cue.wind = std::max(cue.wind, abs(wind_x_)); }
+
   void draw(const FrameContext& f, DrawPass pass) override {
     if (pass == DrawPass::kBackground) {
       renderer_->prepare(f.frame, f.width, f.height);

@@ -171,6 +171,15 @@ class Hearth final : public Element {
     flicker_ = light_.at(step.time);
   }
 
+  // The embers and logs are the fire's body: its roar follows the
+  // firelight's flicker, and it crackles more as the light flares (0 at the
+  // flicker's low 0.55, about 1 at its mean, 1.8 at its peak 1.35).
+  void add_sound_cue(SoundCue& cue) const override {
+    cue.fire += flicker_;
+    cue.activity += clamp((flicker_ - Fixed::from_ratio(55, 100)) * Fixed::from_ratio(9, 4),
+                          Fixed{}, Fixed::from_int(2));
+  }
+
   // The bed and the logs behind or among the flames go in the body pass,
   // before any fire element's flame pass; logs at the front of the bed go in
   // the overlay pass, after the flames, so they hide the flames' feet as

@@ -198,7 +198,18 @@ class PerlinFire final : public Element {
     // Breathing: the whole fire swells and falls as its tongues do (about
     // 0.55..1.35 of the mean turbulence subtracted).
     breath_now_ = breath_.at(step.time);
+    wind_speed_ = abs(w.x) + abs(w.z);  // (L1: no square root on the step)
     uniforms_dirty_ = true;
+  }
+
+  // The fire's loudness follows its breathing (the swell of its tongues),
+  // its crackling how far the breath is above its low point, its whoosh the
+  // wind at the flames.
+  void add_sound_cue(SoundCue& cue) const override {
+    cue.fire += breath_now_;
+    cue.activity +=
+        clamp((breath_now_ - Fixed::from_ratio(55, 100)) * 2, Fixed{}, Fixed::from_int(2));
+    cue.wind = std::max(cue.wind, wind_speed_);
   }
 
   void draw(const FrameContext& f, DrawPass pass) override {
@@ -504,6 +515,7 @@ class PerlinFire final : public Element {
   std::array<float, 3> tongue_offset_{};
   Flicker breath_;
   Fixed lean_x_, lean_z_, drift_x_, drift_z_, time_, breath_now_ = Fixed::from_int(1);
+  Fixed wind_speed_;  // |wind| at the fire this step (L1), m/s
   bool uniforms_dirty_ = true;
 };
 

@@ -1,0 +1,49 @@
+#include "sound/sound_synth.h"
+
+#include <algorithm>
+
+namespace candela {
+namespace {
+// Independent streams for the parts, from one seed (SplitMix64).
+uint64_t part_seed(uint64_t seed, uint64_t part) {
+  uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (part + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+}  // namespace
+
+SoundSynth::SoundSynth(const SoundSettings& s, int steps_per_second, uint64_t seed)
+    : steps_per_second_(std::clamp(steps_per_second, 10, 1000)),
+      volume_(s.volume),
+      voices_(part_seed(seed, 1)),
+      roar_(part_seed(seed, 2), s.roar),
+      fire_(part_seed(seed, 3), s.crackle_rate, s.pop_rate, s.knock_rate, s.crackle),
+      whoosh_(part_seed(seed, 4), s.whoosh, steps_per_second_),
+      candles_(part_seed(seed, 5), s.sputter_rate, s.candle) {}
+
+int SoundSynth::next_step_samples() const {
+  // Step k ends at sample floor((k + 1) * rate / sps): no drift over any run.
+  const uint64_t k = steps_;
+  const auto sps = static_cast<uint64_t>(steps_per_second_);
+  return static_cast<int>((k + 1) * kSampleRate / sps - k * kSampleRate / sps);
+}
+
+int SoundSynth::render_step(const SoundCue& cue, std::span<float> out) {
+  const int n = std::min(next_step_samples(), static_cast<int>(out.size()));
+  float* o = out.data();
+  std::fill(o, o + n, 0.0f);
+  roar_.set_fire(cue.fire.to_float());
+  whoosh_.set_wind(cue.wind.to_float());
+  fire_.step(cue.activity, n, voices_);
+  candles_.step(cue, n, voices_);
+  roar_.render(o, n);
+  whoosh_.render(o, n);
+  voices_.render(o, n);
+  for (int i = 0; i < n; ++i) o[i] = dsp::soft_clip(o[i] * volume_);
+  ++steps_;
+  samples_ += static_cast<uint64_t>(n);
+  return n;
+}
+
+}  // namespace candela
