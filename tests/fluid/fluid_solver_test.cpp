@@ -10,6 +10,7 @@
 
 #include "colour_map.h"
 #include "fuel_bed.h"
+#include "lattice_noise.h"
 #include "pressure_solver.h"
 
 namespace candela::fluid {
@@ -448,6 +449,57 @@ TEST(Radiance, GlowFillsNarrowGapsHazeStaysDim) {
   const double ceiling = 255.0 * 0.22;  // sRGB of linear 0.04, rounded up
   for (int x = 0; x < 18; ++x) ASSERT_LE(z.at(x, 16), ceiling) << "x " << x;
   EXPECT_LE(z.at(31, 16), ceiling) << "the haze alone does not join the tongues";
+}
+
+// The slices' flicker is pink: unit spread about zero, even power per
+// octave (a 1/f spectrum, slope about -1 between 0.75 and 12 Hz), different
+// per seed. (A white or red flicker would miss the real fires' spectra.)
+TEST(PinkFlicker, UnitSpreadAndOneOverFSpectrum) {
+  const double fps = 96.0;
+  const int n = 96 * 600;  // 10 minutes
+  std::vector<double> x(n);
+  double mean = 0.0, var = 0.0;
+  for (int i = 0; i < n; ++i) mean += x[i] = pink_flicker(5, i / fps);
+  mean /= n;
+  for (double v : x) var += (v - mean) * (v - mean);
+  const double sd = std::sqrt(var / n);
+  EXPECT_NEAR(mean, 0.0, 0.1);
+  EXPECT_NEAR(sd, 1.0, 0.15) << "sd " << sd;
+  // Averaged periodograms of 4-s Hann windows; power in octave bands.
+  const int seg = 4 * 96;
+  std::vector<double> psd(seg / 2 + 1, 0.0);
+  for (int s = 0; s + seg <= n; s += seg / 2)
+    for (int k = 1; k <= seg / 2; ++k) {
+      double re = 0.0, im = 0.0;
+      for (int j = 0; j < seg; ++j) {
+        const double w = 0.5 - 0.5 * std::cos(2.0 * M_PI * j / seg);
+        const double a = 2.0 * M_PI * k * j / seg;
+        re += w * x[s + j] * std::cos(a);
+        im -= w * x[s + j] * std::sin(a);
+      }
+      psd[k] += re * re + im * im;
+    }
+  std::vector<double> lf, lp;
+  for (double lo = 0.75; lo < 12.0; lo *= 2.0) {
+    double p = 0.0;
+    int cnt = 0;
+    for (int k = 1; k <= seg / 2; ++k) {
+      const double hz = k * fps / seg;
+      if (hz >= lo && hz < 2.0 * lo) p += psd[k], ++cnt;
+    }
+    lf.push_back(std::log10(lo * std::sqrt(2.0)));
+    lp.push_back(std::log10(p / cnt));
+  }
+  double mf = 0.0, mp = 0.0, sfp = 0.0, sff = 0.0;
+  for (size_t i = 0; i < lf.size(); ++i) mf += lf[i] / lf.size(), mp += lp[i] / lp.size();
+  for (size_t i = 0; i < lf.size(); ++i)
+    sfp += (lf[i] - mf) * (lp[i] - mp), sff += (lf[i] - mf) * (lf[i] - mf);
+  const double slope = sfp / sff;
+  EXPECT_GT(slope, -1.5) << "not red";
+  EXPECT_LT(slope, -0.5) << "not white";
+  int same = 0;
+  for (int i = 0; i < 1000; ++i) same += pink_flicker(5, i / fps) == pink_flicker(6, i / fps);
+  EXPECT_LT(same, 10) << "each seed flickers on its own";
 }
 
 // The fuel bed: the front log hides the flames behind it and is lit by them;

@@ -245,13 +245,15 @@ TEST(StoryPlan, SameSeedSameFramesAndSeedsDiffer) {
 // seconds asked for at the model's rate, only frames the ARP was trained on
 // (single-plume ones), the same frames for the same seed, others for another.
 TEST(StoryPlan, ArpSegmentsShowTrainingFramesAndFollowTheSeed) {
+  // The built-in candle (a fire is many plumes at once: its model has no
+  // Learning Flames part).
   const model::FlameModel m =
-      model::FlameModel::load(std::string(CANDELA_SOURCE_DIR) + "/firmware/models/fire.cmodel");
+      model::FlameModel::load(std::string(CANDELA_SOURCE_DIR) + "/firmware/models/default.cmodel");
   ASSERT_TRUE(m.has_learning_flames);
   const StoryDesc s = load_story_text("model = \"x\"\nloop = false\n[[segment]]\narp = 4.0\n", "t");
   const StoryPlan a = plan_story(s, m, 11), b = plan_story(s, m, 11), c = plan_story(s, m, 12);
-  ASSERT_EQ(a.frames(), 120);  // 4 s at 30 fps
-  ASSERT_EQ(b.frames(), 120);
+  ASSERT_EQ(a.frames(), 240);  // 4 s at 60 fps
+  ASSERT_EQ(b.frames(), 240);
   std::vector<int> multi;
   for (const auto& v : m.file().info()["multi_plume"]) multi.push_back(v.get<int>());
   int same = 0, distinct = 0;

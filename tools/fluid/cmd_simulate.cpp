@@ -109,6 +109,11 @@ int run_simulate(int argc, char** argv) {
                "logs and glowing coals around the flames (on the canvas of --slices)");
   app.add_option("--slice-spacing", slice_spacing, "distance between slice centres, slice widths")
       ->capture_default_str();
+  double slice_flicker = 0.0;
+  app.add_option("--slice-flicker", slice_flicker,
+                 "slices: each slice's light flickers by this depth (0..0.5) with 1/f noise, "
+                 "0.75-24 Hz")
+      ->capture_default_str();
   app.add_option(
       "--t-reference", t_reference,
       "temperature shown as full brightness, K (default: hottest cell after the warm-up)");
@@ -171,6 +176,7 @@ int run_simulate(int argc, char** argv) {
     opt.scale = scale;
     opt.slices = slices;
     opt.slice_spacing = slice_spacing;
+    opt.slice_flicker = slice_flicker;
     opt.fuel_bed = fuel_bed;
     opt.t_reference = t_reference;
     opt.write_fields = !no_fields;

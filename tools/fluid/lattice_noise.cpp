@@ -35,4 +35,19 @@ double value_noise(uint64_t seed, double x, double y, double t) {
   return c[0] + (c[1] - c[0]) * at;
 }
 
+constexpr double kStdOctave = 0.25;
+
+double pink_flicker(uint64_t seed, double t) {
+  // Value noise at frequency f has its power spread below f (density ~1/f
+  // there), so equal octaves sum to a density ~1/f: pink. One octave has std
+  // ~0.25 about its mean 0.5 (measured: PinkFlicker test); normalised.
+  constexpr int kOctaves = 6;
+  double sum = 0.0;
+  for (int o = 0; o < kOctaves; ++o) {
+    const double hz = 0.75 * static_cast<double>(1 << o);
+    sum += value_noise(seed + 1000003ull * o, 0.0, 0.0, t * hz) - 0.5;
+  }
+  return sum / (kStdOctave * std::sqrt(static_cast<double>(kOctaves)));
+}
+
 }  // namespace candela::fluid

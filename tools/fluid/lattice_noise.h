@@ -13,5 +13,8 @@ uint64_t mix64(uint64_t z);
 double lattice_hash(uint64_t seed, int64_t i, int64_t j, int64_t k);
 // Value noise in [0, 1] in (x, y, t), smoothstep-blended between lattice points.
 double value_noise(uint64_t seed, double x, double y, double t);
+// Pink (1/f) noise of time t (seconds): six equal octaves of value noise
+// from 0.75 to 24 Hz; mean about 0, std about 1.
+double pink_flicker(uint64_t seed, double t);
 
 }  // namespace candela::fluid

@@ -10,6 +10,7 @@
 #include "core/random.h"
 #include "field_file.h"
 #include "fuel_bed.h"
+#include "lattice_noise.h"
 #include "sim_dataset.h"
 
 namespace candela::fluid {
@@ -186,6 +187,10 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
     throw std::invalid_argument("slice-spacing: a number in (0, 4] (slice widths)");
   if (opt.slices > 1 && (!opt.radiance || opt.colour != ColourMode::kGray))
     throw std::invalid_argument("slices: need --render radiance and --colour gray");
+  if (!(opt.slice_flicker >= 0.0) || !(opt.slice_flicker <= 0.5))
+    throw std::invalid_argument("slice-flicker: a depth in 0..0.5");
+  if (opt.slice_flicker > 0.0 && opt.slices < 2)
+    throw std::invalid_argument("slice-flicker: applies to --slices 2 or more");
   if (opt.fuel_bed && opt.slices < 2)
     throw std::invalid_argument("fuel-bed: drawn on the canvas of --slices 2 or more");
   if (opt.slices > 1 && opt.write_fields)
@@ -275,9 +280,15 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
       cam.exposure /= opt.substeps;
       for (int sub = 0; sub < opt.substeps; ++sub) {
         one_step();
-        for (int k = 0; k < opt.slices; ++k)
-          add_radiance(solvers[k].temperature(), &solvers[k].fuel(), table, cam, placement[k],
-                       canvas_w, canvas_h, canvas);
+        const double t = opt.warmup + (f + (sub + 0.5) / opt.substeps) / opt.fps;
+        for (int k = 0; k < opt.slices; ++k) {
+          SlicePlacement at = placement[k];
+          if (opt.slice_flicker > 0.0)
+            at.gain *= std::max(
+                0.0, 1.0 + opt.slice_flicker * pink_flicker(params.seed * 131 + 7 * k + 3, t));
+          add_radiance(solvers[k].temperature(), &solvers[k].fuel(), table, cam, at, canvas_w,
+                       canvas_h, canvas);
+        }
       }
       if (opt.fuel_bed) draw_fuel_bed(bed, opt.warmup + f / opt.fps, canvas_w, canvas_h, canvas);
       img = finish_radiance(canvas, canvas_w, canvas_h, opt.camera);

@@ -29,6 +29,13 @@ struct SimulateOptions {
   // many thin tongues side by side, which this gives.
   int slices = 1;
   double slice_spacing = 0.5;  // distance between slice centres, in slice widths
+  // Each slice's light flickers on its own by this depth (std of the gain,
+  // 0..0.5), with pink (1/f) noise from 0.75 to 24 Hz: the many small
+  // pockets of a real fire ignite and die out faster than a coarse 2-D
+  // simulation resolves, so its brightness, sway and width flicker with
+  // near-1/f spectra (the real fires' slopes are -0.8..-1.3; the slices alone
+  // give -2.3..-2.8).
+  double slice_flicker = 0.0;
   // Logs and coals around the flames (fuel_bed.h), drawn on the slices' canvas.
   bool fuel_bed = false;
   bool write_fields = true;
