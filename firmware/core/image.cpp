@@ -2,7 +2,9 @@
 
 #include <png.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -196,6 +198,36 @@ void write_png(const std::string& path, int width, int height, int channels, con
 
 void write_png(const std::string& path, const Image& image) {
   write_png(path, image.width, image.height, image.channels, image.pixels.data());
+}
+
+void gaussian_blur(std::vector<float>& pixels, int width, int height, int channels, double sigma) {
+  if (!(sigma >= 0.5)) return;
+  const int r = static_cast<int>(std::ceil(3.0 * sigma));
+  std::vector<double> k(2 * r + 1);
+  double sum = 0.0;
+  for (int i = -r; i <= r; ++i) sum += k[i + r] = std::exp(-0.5 * i * i / (sigma * sigma));
+  for (double& w : k) w /= sum;
+  std::vector<float> tmp(pixels.size());
+  // Along rows, then along columns.
+  for (int pass = 0; pass < 2; ++pass) {
+    const int n = pass == 0 ? width : height, m = pass == 0 ? height : width;
+    for (int a = 0; a < m; ++a)
+      for (int b = 0; b < n; ++b) {
+        const size_t out =
+            pass == 0 ? static_cast<size_t>(a) * width + b : static_cast<size_t>(b) * width + a;
+        for (int c = 0; c < channels; ++c) {
+          double acc = 0.0;
+          for (int i = -r; i <= r; ++i) {
+            const int bb = std::clamp(b + i, 0, n - 1);
+            const size_t at = pass == 0 ? static_cast<size_t>(a) * width + bb
+                                        : static_cast<size_t>(bb) * width + a;
+            acc += k[i + r] * pixels[channels * at + c];
+          }
+          tmp[channels * out + c] = static_cast<float>(acc);
+        }
+      }
+    pixels.swap(tmp);
+  }
 }
 
 }  // namespace candela

@@ -33,4 +33,10 @@ void write_png(const std::string& path, const Image& image);
 void write_png(const std::string& path, int width, int height, int channels, const uint8_t* data,
                int stride = 0);
 
+// Separable Gaussian blur (sigma in pixels, kernel cut at 3 sigma) of a float
+// image of `channels` interleaved channels, rows top-down, in place; edges
+// clamped (the light beyond the edge is the edge's own). Sigma below 0.5
+// leaves it as it is. For the tools' glows; the runtime blurs on the GPU.
+void gaussian_blur(std::vector<float>& pixels, int width, int height, int channels, double sigma);
+
 }  // namespace candela

@@ -131,35 +131,6 @@ void add_radiance(const Grid2& t, const Grid2* fuel, const RadianceTable& table,
   }
 }
 
-namespace {
-// Separable Gaussian blur (sigma in pixels, kernel cut at 3 sigma), edges
-// clamped: the light beyond the canvas is taken as the edge's own.
-std::vector<float> gaussian_blur(const std::vector<float>& in, int width, int height,
-                                 double sigma) {
-  const int r = std::max(1, static_cast<int>(std::ceil(3.0 * sigma)));
-  std::vector<double> k(2 * r + 1);
-  double sum = 0.0;
-  for (int i = -r; i <= r; ++i) sum += k[i + r] = std::exp(-0.5 * i * i / (sigma * sigma));
-  for (double& w : k) w /= sum;
-  std::vector<float> tmp(in.size()), out(in.size());
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      double a = 0.0;
-      for (int i = -r; i <= r; ++i)
-        a += k[i + r] * in[static_cast<size_t>(y) * width + std::clamp(x + i, 0, width - 1)];
-      tmp[static_cast<size_t>(y) * width + x] = static_cast<float>(a);
-    }
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      double a = 0.0;
-      for (int i = -r; i <= r; ++i)
-        a += k[i + r] * tmp[static_cast<size_t>(std::clamp(y + i, 0, height - 1)) * width + x];
-      out[static_cast<size_t>(y) * width + x] = static_cast<float>(a);
-    }
-  return out;
-}
-}  // namespace
-
 Image finish_radiance(const std::vector<float>& canvas, int width, int height, const Camera& cam) {
   Image img;
   img.width = width;
@@ -167,14 +138,20 @@ Image finish_radiance(const std::vector<float>& canvas, int width, int height, c
   img.channels = 1;
   img.pixels.resize(static_cast<size_t>(width) * height);
   std::vector<float> glow;
-  if (cam.glow > 0.0) glow = gaussian_blur(canvas, width, height, cam.glow_radius);
+  if (cam.glow > 0.0) {
+    glow = canvas;
+    gaussian_blur(glow, width, height, 1, cam.glow_radius);
+  }
   std::vector<float> clipped(canvas.size());
   for (size_t i = 0; i < clipped.size(); ++i) {
     const double light = canvas[i] + (glow.empty() ? 0.0 : cam.glow * glow[i]);
     clipped[i] = static_cast<float>(soft_clip(light, cam.knee));
   }
   std::vector<float> haze;
-  if (cam.haze > 0.0) haze = gaussian_blur(clipped, width, height, cam.haze_radius);
+  if (cam.haze > 0.0) {
+    haze = clipped;
+    gaussian_blur(haze, width, height, 1, cam.haze_radius);
+  }
   for (size_t i = 0; i < img.pixels.size(); ++i) {
     const double light = clipped[i] + (haze.empty() ? 0.0 : cam.haze * haze[i]);
     img.pixels[i] = encode_srgb(std::min(1.0, light));

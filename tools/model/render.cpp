@@ -13,35 +13,6 @@ float hls_channel(float m1, float m2, float h) {
   if (h < 2.0f / 3) return m1 + (m2 - m1) * (2.0f / 3 - h) * 6;
   return m1;
 }
-
-// Separable Gaussian blur of a float RGB buffer, in place.
-void blur(std::vector<float>& rgb, int w, int h, float sigma) {
-  if (sigma < 0.5f) return;
-  const int r = static_cast<int>(std::ceil(3 * sigma));
-  std::vector<float> k(2 * r + 1);
-  float sum = 0;
-  for (int i = -r; i <= r; ++i) sum += k[i + r] = std::exp(-0.5f * i * i / (sigma * sigma));
-  for (float& v : k) v /= sum;
-  std::vector<float> tmp(rgb.size());
-  for (int pass = 0; pass < 2; ++pass) {
-    const int n = pass == 0 ? w : h, m = pass == 0 ? h : w;
-    for (int a = 0; a < m; ++a)
-      for (int b = 0; b < n; ++b)
-        for (int c = 0; c < 3; ++c) {
-          float acc = 0;
-          for (int i = -r; i <= r; ++i) {
-            const int bb = std::clamp(b + i, 0, n - 1);
-            const size_t at =
-                pass == 0 ? (static_cast<size_t>(a) * w + bb) : (static_cast<size_t>(bb) * w + a);
-            acc += k[i + r] * rgb[3 * at + c];
-          }
-          const size_t at =
-              pass == 0 ? (static_cast<size_t>(a) * w + b) : (static_cast<size_t>(b) * w + a);
-          tmp[3 * at + c] = acc;
-        }
-    rgb.swap(tmp);
-  }
-}
 }  // namespace
 
 Image gray_image(const float* gray, int width, int height) {
@@ -72,7 +43,7 @@ Image colourise(const float* gray, int width, int height, float hue_deg, float s
   }
   if (glow_strength > 0 && glow_radius > 0) {
     std::vector<float> glow = rgb;
-    blur(glow, width, height, glow_radius * static_cast<float>(height));
+    gaussian_blur(glow, width, height, 3, glow_radius * static_cast<float>(height));
     for (size_t i = 0; i < rgb.size(); ++i) rgb[i] += glow_strength * glow[i];
   }
   Image img;
