@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "colour_flags.h"
 #include "core/image.h"
 #include "model/flame_model.h"
 #include "render.h"
@@ -19,7 +20,7 @@ int run_render_weights(int argc, char** argv) {
   std::vector<float> weights;
   std::vector<std::string> sets;
   bool gray = false, zero = false;
-  float hue = -1, sat = -1, glow_radius = -1, glow = -1;
+  candela::tools::ColourFlags colour;
   app.add_option("MODEL", path, "model file")->required();
   app.add_option("--out", out, "PNG to write")->required();
   auto* fr = app.add_option("--frame", frame, "start from this stored frame's weights");
@@ -30,11 +31,7 @@ int run_render_weights(int argc, char** argv) {
   app.add_flag("--zero", zero, "start from all-zero weights (the mean image)");
   app.add_option("--set", sets, "edit one weight: K=VALUE (component K, 0-based); repeatable");
   app.add_flag("--gray", gray, "write the gray (sRGB-encoded) image instead of the coloured one");
-  app.add_option("--hue", hue, "hue in degrees (default: the model's)");
-  app.add_option("--saturation", sat, "saturation 0..1 (default: the model's)");
-  app.add_option("--glow-radius", glow_radius,
-                 "glow radius, fraction of the height (default: the model's)");
-  app.add_option("--glow", glow, "glow strength (default: the model's; 0: none)");
+  colour.add_to(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -70,11 +67,7 @@ int run_render_weights(int argc, char** argv) {
   if (gray) {
     candela::write_png(out, candela::tools::gray_image(img.data(), m.width(), m.height()));
   } else {
-    candela::write_png(out, candela::tools::colourise(
-                                img.data(), m.width(), m.height(), hue >= 0 ? hue : m.colour.hue,
-                                sat >= 0 ? sat : m.colour.saturation,
-                                glow_radius >= 0 ? glow_radius : m.colour.glow_radius,
-                                glow >= 0 ? glow : m.colour.glow_strength, m.colour.black_level));
+    candela::write_png(out, colour.colourise(img.data(), m.width(), m.height(), m.colour));
   }
   std::printf("%s: %dx%d\n", out.c_str(), m.width(), m.height());
   return 0;

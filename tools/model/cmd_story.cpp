@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "colour_flags.h"
 #include "core/error.h"
 #include "display/frame_writer.h"
 #include "model/flame_model.h"
@@ -50,7 +51,7 @@ int run_story(int argc, char** argv) {
   uint64_t seed = 0;
   float max_seam = 0;
   bool gray = false, no_render = false;
-  float hue = -1, sat = -1, glow_radius = -1, glow = -1;
+  candela::tools::ColourFlags colour;
   app.add_option("STORY", path, "story file (TOML), or builtin:NAME (firmware/stories/NAME.toml)")
       ->required();
   app.add_option("--out", out, "story.mp4 (ffmpeg), story.y4m, or a folder of PNG frames");
@@ -61,11 +62,7 @@ int run_story(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_flag("--gray", gray, "write gray frames instead of coloured ones");
   app.add_flag("--no-render", no_render, "only plan and report the joints");
-  app.add_option("--hue", hue, "hue in degrees (default: the model's, as the runtime)");
-  app.add_option("--saturation", sat, "saturation 0..1 (default: the model's)");
-  app.add_option("--glow-radius", glow_radius,
-                 "glow radius, fraction of the height (default: the model's)");
-  app.add_option("--glow", glow, "glow strength (default: the model's; 0: none)");
+  colour.add_to(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -102,13 +99,8 @@ int run_story(int argc, char** argv) {
     std::vector<uint8_t> rgba(static_cast<size_t>(w) * h * 4);
     for (int i = 0; i < plan.frames(); ++i) {
       m.reconstruct({plan.weights_of(i), static_cast<size_t>(plan.components())}, img);
-      const candela::Image pic =
-          gray ? candela::tools::gray_image(img.data(), w, h)
-               : candela::tools::colourise(img.data(), w, h, hue >= 0 ? hue : m.colour.hue,
-                                           sat >= 0 ? sat : m.colour.saturation,
-                                           glow_radius >= 0 ? glow_radius : m.colour.glow_radius,
-                                           glow >= 0 ? glow : m.colour.glow_strength,
-                                           m.colour.black_level);
+      const candela::Image pic = gray ? candela::tools::gray_image(img.data(), w, h)
+                                      : colour.colourise(img.data(), w, h, m.colour);
       // The sink takes RGBA rows bottom to top (as glReadPixels gives them).
       for (int y = 0; y < h; ++y) {
         const uint8_t* src = pic.row(y);
