@@ -5,30 +5,15 @@
 #include <sys/un.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cstddef>
 #include <cstdlib>
 #include <cstring>
-#include <new>
 #include <string>
 
 #include "app/frame_loop.h"
 #include "app/sd_notify.h"
+#include "support/allocation_counter.h"
 #include "support/render_harness.h"
-
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t n) {
-  if (g_counting.load(std::memory_order_relaxed))
-    g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace candela {
 namespace {
@@ -57,12 +42,11 @@ TEST(FrameLoop, NoHeapAllocationPerFrame) {
     s.max_frames = 10;  // warm-up: first-use allocations in drivers and caches
     run_frame_loop(*display, scene, s);
     s.max_frames = 120;
-    g_allocations = 0;
-    g_counting = true;
+    test::start_counting_allocations();
     const LoopResult r = run_frame_loop(*display, scene, s);
-    g_counting = false;
+    const long allocations = test::stop_counting_allocations();
     EXPECT_EQ(r.frames, 120u);
-    EXPECT_EQ(g_allocations.load(), 0) << "operator new called during the frame loop";
+    EXPECT_EQ(allocations, 0) << "operator new called during the frame loop";
   }
 }
 
@@ -98,12 +82,11 @@ TEST(FrameLoop, NoHeapAllocationWithSystemdNotify) {
   EXPECT_EQ(getenv("NOTIFY_SOCKET"), nullptr) << "children would inherit NOTIFY_SOCKET";
   s.notify = &notify;
   s.max_frames = 120;
-  g_allocations = 0;
-  g_counting = true;
+  test::start_counting_allocations();
   const LoopResult r = run_frame_loop(*display, scene, s);
-  g_counting = false;
+  const long allocations = test::stop_counting_allocations();
   EXPECT_EQ(r.frames, 120u);
-  EXPECT_EQ(g_allocations.load(), 0) << "operator new called during the frame loop";
+  EXPECT_EQ(allocations, 0) << "operator new called during the frame loop";
   char buf[256];
   const ssize_t n = recv(rx, buf, sizeof(buf) - 1, MSG_DONTWAIT);
   ASSERT_GT(n, 0);

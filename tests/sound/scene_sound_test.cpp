@@ -6,13 +6,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
-#include <new>
 #include <string>
 #include <vector>
 
@@ -20,23 +18,8 @@
 #include "core/clock.h"
 #include "sound/sound_output.h"
 #include "sound/sound_synth.h"
+#include "support/allocation_counter.h"
 #include "support/render_harness.h"
-
-// operator new counted, as tests/foundation/no_allocation_test.cpp does.
-namespace {
-std::atomic<bool> g_counting{false};
-std::atomic<long> g_allocations{0};
-}  // namespace
-#if !defined(__SANITIZE_ADDRESS__)  // ASan brings its own; the normal build counts
-void* operator new(std::size_t n) {
-  if (g_counting.load(std::memory_order_relaxed))
-    g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-#endif
 
 namespace candela {
 namespace {
@@ -189,14 +172,13 @@ TEST(SceneSound, FrameLoopFeedsOneStepOfSoundPerStep) {
   s.max_frames = 10;
   const LoopResult warm = run_frame_loop(*display, scene, s);
   s.max_frames = 90;
-  g_allocations = 0;
-  g_counting = true;
+  test::start_counting_allocations();
   const LoopResult r = run_frame_loop(*display, scene, s);
-  g_counting = false;
+  const long allocations = test::stop_counting_allocations();
   sound->finish();
-#if !defined(__SANITIZE_ADDRESS__)
-  EXPECT_EQ(g_allocations.load(), 0) << "operator new called during the frame loop with sound";
-#endif
+  if (test::allocations_counted()) {
+    EXPECT_EQ(allocations, 0) << "operator new called during the frame loop with sound";
+  }
   const uint64_t steps = warm.steps + r.steps;
   EXPECT_EQ(sound->stats().steps, steps);
   std::ifstream f(path, std::ios::binary);
