@@ -76,7 +76,6 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
       components_(std::clamp(std::min(eigen.count, max_components), 0, kMaxComponents)),
       entries_(components_ + 1),
       layers_(layout == StackLayout::kPacked ? (entries_ + 3) / 4 : entries_),
-      layout_(layout),
       mean_scale_(mean.scale[0]),
       mean_offset_(mean.offset[0]),
       eigen_scale_(eigen.scale),

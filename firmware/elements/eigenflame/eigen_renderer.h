@@ -53,7 +53,6 @@ class EigenReconstructor {
 
  private:
   int width_, height_, components_, entries_, layers_;
-  StackLayout layout_;
   Program program_;
   Texture stack_, target_;
   Framebuffer fbo_;
