@@ -1,7 +1,8 @@
 // manifest.json: what was recorded (camera, format, controls) and how it
 // went (every written frame, every dropped one, the preview, how it ended),
 // written with nlohmann_json in a fixed key order (tools/record/README.md
-// lists the keys).
+// lists the keys); only the long frames array is formatted directly, as it is
+// rewritten every second.
 #pragma once
 
 #include <cstdint>
