@@ -29,4 +29,9 @@ const char* fault_prefix(OutputFault fault) {
   }
 }
 
+OutputFault fault_of(const std::exception& e) {
+  const auto* oe = dynamic_cast<const OutputError*>(&e);
+  return oe ? oe->fault() : OutputFault::kNone;
+}
+
 }  // namespace candela::record

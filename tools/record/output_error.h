@@ -36,4 +36,8 @@ class OutputError : public RuntimeError {
   int error_number_;
 };
 
+// The fault behind any exception: an OutputError's, else kNone (nothing
+// says it was the disk).
+OutputFault fault_of(const std::exception& e);
+
 }  // namespace candela::record

@@ -66,9 +66,8 @@ void PngWriterPool::close() {
 
 WriteFailure PngWriterPool::classify(const std::exception& e, size_t frame_bytes) const {
   WriteFailure f{e.what(), OutputFault::kOther};
-  if (const auto* oe = dynamic_cast<const OutputError*>(&e)) {
-    f.fault = oe->fault();
-    if (f.fault == OutputFault::kNone) f.fault = OutputFault::kOther;
+  if (dynamic_cast<const OutputError*>(&e)) {
+    if (const OutputFault fault = fault_of(e); fault != OutputFault::kNone) f.fault = fault;
     return f;
   }
   // libpng reports a failed fwrite as "Write Error" without errno: ask the filesystem.

@@ -69,6 +69,48 @@ std::string info_text(const RecordingInfo& info, double rate, const std::string&
          " PNG frames in frames/; details in manifest.json\n";
 }
 
+// What the manifest says of the camera and the format; locks the camera's
+// auto controls on the way (what lock_auto did is part of it).
+RecordingInfo describe(VideoCapture& cap, const RecordOptions& o, const OutputFolder& folder) {
+  AutoLockRequest lock_request;
+  lock_request.keep_auto = o.keep_auto;
+  lock_request.exposure = o.exposure;
+  lock_request.gain = o.gain;
+  lock_request.white_balance = o.white_balance;
+  const VideoFormat& f = cap.format();
+  RecordingInfo info;
+  info.locked = cap.lock_auto(lock_request);
+  info.controls = cap.controls();
+  info.clip = !o.clip.empty() ? o.clip : folder.name();
+  info.backend = cap.backend();
+  info.device = cap.device();
+  info.card = cap.card();
+  info.driver = cap.driver();
+  info.width = f.width;
+  info.height = f.height;
+  info.pixel_format = fourcc_name(f.fourcc);
+  info.color = o.color;
+  info.fps = f.fps > 0 ? f.fps : o.fps;
+  info.requested_fps = o.fps;
+  return info;
+}
+
+// When the camera's timestamps disagree with the rate it reported by over
+// 5%, info.txt gets the measured rate (ingest would play the clip too fast
+// or slow otherwise).
+void correct_info_rate(const OutputFolder& folder, const RecordingInfo& info, double measured) {
+  if (!(measured > 0) || std::abs(measured - info.fps) <= 0.05 * info.fps) return;
+  const std::string how =
+      " (measured from the camera's timestamps; it reported " + format_g(info.fps) + ")";
+  try {
+    write_atomic(folder.info_path(), info_text(info, std::round(measured * 100) / 100, how));
+    LOG_WARN("%s: the camera delivered %.2f fps, not the %g it reported; info.txt says %.2f",
+             folder.path().c_str(), measured, info.fps, measured);
+  } catch (const std::exception& e) {
+    LOG_WARN("%s: info.txt keeps %g fps (%s)", folder.path().c_str(), info.fps, e.what());
+  }
+}
+
 // Rewrites manifest.json from the writers' and the loop's state, keeping the
 // reserve on disk grown with it.
 class ManifestWriter {
@@ -144,25 +186,7 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
   if (o.color && (f.fourcc == V4L2_PIX_FMT_NV12 || f.fourcc == V4L2_PIX_FMT_YUV420))
     return failed(kExitCamera,
                   "--color: " + fourcc_name(f.fourcc) + " frames are recorded gray only");
-  AutoLockRequest lock_request;
-  lock_request.keep_auto = o.keep_auto;
-  lock_request.exposure = o.exposure;
-  lock_request.gain = o.gain;
-  lock_request.white_balance = o.white_balance;
-  RecordingInfo info;
-  info.locked = cap->lock_auto(lock_request);
-  info.controls = cap->controls();
-  info.clip = !o.clip.empty() ? o.clip : folder.name();
-  info.backend = cap->backend();
-  info.device = cap->device();
-  info.card = cap->card();
-  info.driver = cap->driver();
-  info.width = f.width;
-  info.height = f.height;
-  info.pixel_format = fourcc_name(f.fourcc);
-  info.color = o.color;
-  info.fps = f.fps > 0 ? f.fps : o.fps;
-  info.requested_fps = o.fps;
+  RecordingInfo info = describe(*cap, o, folder);
   // Rewritten at the end when the camera's timestamps disagree with the rate it reported.
   try {
     write_atomic(folder.info_path(), info_text(info, info.fps, ""));
@@ -188,9 +212,9 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
   LoopEnd end = loop.run(stop, [&]() -> std::optional<LoopEnd> {
     try {
       manifest.write_progress(loop.dropped());
-    } catch (const OutputError& e) {
+    } catch (const std::exception& e) {
       return LoopEnd{std::string("writing the manifest failed: ") + e.what(), kExitOutput, false,
-                     e.fault()};
+                     fault_of(e)};
     }
     if (!manifest.grow_reserve())  // already says "disk full": no fault prefix
       return LoopEnd{"output disk full; No space left on device to keep recording safely",
@@ -207,25 +231,14 @@ RecordResult record(const RecordOptions& o, const std::atomic<bool>& stop, Frame
   // frees room for the final manifest even on a full disk.
   try {
     res.written = manifest.write_final(loop.dropped(), end);
-  } catch (const OutputError& e) {
+  } catch (const std::exception& e) {
     res.written = writers.written_count();
     end.reason += std::string("; the final manifest could not be written (") + e.what() +
                   "), the one from the last second stands";
     if (end.exit_code == kExitOk) end.exit_code = kExitOutput;
-    if (end.fault == OutputFault::kNone) end.fault = e.fault();
+    if (end.fault == OutputFault::kNone) end.fault = fault_of(e);
   }
-  if (const double measured = writers.measured_fps();
-      measured > 0 && std::abs(measured - info.fps) > 0.05 * info.fps) {
-    const std::string how =
-        " (measured from the camera's timestamps; it reported " + format_g(info.fps) + ")";
-    try {
-      write_atomic(folder.info_path(), info_text(info, std::round(measured * 100) / 100, how));
-      LOG_WARN("%s: the camera delivered %.2f fps, not the %g it reported; info.txt says %.2f",
-               o.out.c_str(), measured, info.fps, measured);
-    } catch (const std::exception& e) {
-      LOG_WARN("%s: info.txt keeps %g fps (%s)", o.out.c_str(), info.fps, e.what());
-    }
-  }
+  correct_info_rate(folder, info, writers.measured_fps());
   res.exit_code = end.exit_code;
   res.dropped = loop.dropped().size();
   res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
