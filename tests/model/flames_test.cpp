@@ -36,11 +36,9 @@ TEST(LearningFlames, NormalisationInvertsOnRealFrames) {
     ASSERT_GT(s.height, 10.0);
     ct::normalise(d.frame(f), d.width, d.height, s, o, norm.data());
     ct::denormalise(norm.data(), s, o, d.width, d.height, back.data());
-    double mse = 0, energy = 0;
-    for (size_t p = 0; p < back.size(); ++p) {
+    double mse = 0;
+    for (size_t p = 0; p < back.size(); ++p)
       mse += (back[p] - d.frame(f)[p]) * (back[p] - d.frame(f)[p]);
-      energy += d.frame(f)[p];
-    }
     mse /= static_cast<double>(back.size());
     std::printf("frame %d: normalise + inverse PSNR %.1f dB (height %.0f px)\n", f,
                 ct::psnr_from_mse(mse), s.height);
