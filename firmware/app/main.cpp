@@ -138,6 +138,7 @@ int main(int argc, char** argv) {
     ls.realtime = opt.realtime;
     ls.stats = &stats;
     InputHub inputs(desc.inputs, desc.wind, opt.control);
+    inputs.set_volume(desc.sound.volume);
     inputs.start();
     ls.inputs = &inputs;
     ls.notify = &notify;
