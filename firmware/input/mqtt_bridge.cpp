@@ -136,6 +136,8 @@ void MqttBridge::start() {
   if (!s_.username.empty())
     mosquitto_username_pw_set(mosq_, s_.username.c_str(),
                               s_.password.empty() ? nullptr : s_.password.c_str());
+  // Small messages, answered at once: no Nagle delay (40 ms with delayed ACKs).
+  mosquitto_int_option(mosq_, MOSQ_OPT_TCP_NODELAY, 1);
   const std::string avail = s_.prefix + "/availability";
   mosquitto_will_set(mosq_, avail.c_str(), 7, "offline", 1, true);
   mosquitto_connect_callback_set(mosq_, [](mosquitto*, void* self, int rc) {
@@ -168,9 +170,10 @@ bool MqttBridge::wait_stop(int64_t ms) {
                       [&] { return stop_.load(std::memory_order_acquire); });
 }
 
-void MqttBridge::publish(const std::string& topic, const std::string& payload, bool retain) {
+void MqttBridge::publish(const std::string& topic, const std::string& payload, bool retain,
+                         int qos) {
   mosquitto_publish(mosq_, nullptr, topic.c_str(), static_cast<int>(payload.size()), payload.data(),
-                    1, retain);
+                    qos, retain);
 }
 
 // Volume, wind and candles lit: what a change of is published at once;
@@ -181,7 +184,9 @@ void MqttBridge::publish_state(bool force) {
   const std::string key = at == std::string::npos ? state : state.substr(at);
   if (!force && key == last_state_) return;
   last_state_ = key;
-  publish(s_.prefix + "/state", state, true);
+  // QoS 0: the next state supersedes it, and no PUBACK comes back to be
+  // held by the broker's Nagle (a command would then wait about 40 ms).
+  publish(s_.prefix + "/state", state, true, 0);
 }
 
 std::string MqttBridge::discovery_json() const {
@@ -260,7 +265,7 @@ void MqttBridge::on_message(const mosquitto_message* m) {
     reply = hub_.answer(line, InputHub::Origin::kMqtt);
   }
   commands_.fetch_add(1, std::memory_order_relaxed);
-  publish(s_.prefix + "/reply", reply, false);
+  publish(s_.prefix + "/reply", reply, false, 0);
   publish_state(true);
 }
 

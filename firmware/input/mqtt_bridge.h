@@ -76,7 +76,7 @@ class MqttBridge {
   void on_connect(int rc);
   void on_disconnect(int rc);
   void on_message(const mosquitto_message* m);
-  void publish(const std::string& topic, const std::string& payload, bool retain);
+  void publish(const std::string& topic, const std::string& payload, bool retain, int qos = 1);
   void publish_state(bool force);
   std::string discovery_json() const;
   bool wait_stop(int64_t ms);

@@ -239,6 +239,18 @@ def case_commands():
     check(client.wait(PREFIX + "/reply") == "ok", "set/gust answers ok")
     st = client.wait(PREFIX + "/state", lambda x: json.loads(x)["wind"]["x"] < 0)
     check(st is not None, "the gust from the right shows in the state's wind")
+    # The round trip a home automation sees: command published -> reply received.
+    trips = []
+    for i in range(20):
+        t0 = time.monotonic()
+        client.send("volume", "0.%02d" % (30 + i))
+        if client.wait(PREFIX + "/reply") != "ok":
+            break
+        trips.append((time.monotonic() - t0) * 1000)
+    trips.sort()
+    check(len(trips) == 20, "20 volume commands answered")
+    if trips:
+        print("     MQTT round trip on loopback: median %.2f ms, max %.2f ms" % (trips[len(trips) // 2], trips[-1]))
     client.send("dance", "now")
     r = client.wait(PREFIX + "/reply")
     check(r is not None and r.startswith("error: unknown command"), "an unknown command is refused", r)
