@@ -189,20 +189,27 @@ void MqttBridge::publish_state(bool force) {
   publish(s_.prefix + "/state", state, true, 0);
 }
 
-std::string MqttBridge::discovery_json() const {
+std::string MqttBridge::discovery_json(bool gust) const {
   const std::string node = mqtt_node_id(s_.prefix);
   const std::string& p = s_.prefix;
+  const std::string common =
+      ",\"availability_topic\":" + json_quote(p + "/availability") +
+      ",\"payload_available\":\"online\",\"payload_not_available\":\"offline\","
+      "\"device\":{\"identifiers\":[" +
+      json_quote("candela_" + node) + "],\"name\":" + json_quote("Candela " + p) +
+      ",\"manufacturer\":\"Candela\",\"model\":\"candela\",\"sw_version\":\"0.1.0\"}}";
+  if (gust)  // a button: a gust from the front at the scene's [wind] gust_speed
+    return "{\"name\":\"Gust\",\"unique_id\":" + json_quote(node + "_gust") +
+           ",\"object_id\":" + json_quote(node + "_gust") +
+           ",\"command_topic\":" + json_quote(p + "/set/gust") +
+           ",\"payload_press\":\"front\",\"icon\":\"mdi:weather-windy\"" + common;
   return "{\"name\":\"Volume\",\"unique_id\":" + json_quote(node + "_volume") +
          ",\"object_id\":" + json_quote(node + "_volume") +
          ",\"command_topic\":" + json_quote(p + "/set/volume") +
          ",\"state_topic\":" + json_quote(p + "/state") +
          ",\"value_template\":\"{{ value_json.volume }}\",\"min\":0,\"max\":1,\"step\":0.01,"
-         "\"mode\":\"slider\",\"icon\":\"mdi:volume-high\",\"availability_topic\":" +
-         json_quote(p + "/availability") +
-         ",\"payload_available\":\"online\",\"payload_not_available\":\"offline\","
-         "\"device\":{\"identifiers\":[" +
-         json_quote("candela_" + node) + "],\"name\":" + json_quote("Candela " + p) +
-         ",\"manufacturer\":\"Candela\",\"model\":\"candela\",\"sw_version\":\"0.1.0\"}}";
+         "\"mode\":\"slider\",\"icon\":\"mdi:volume-high\"" +
+         common;
 }
 
 void MqttBridge::on_connect(int rc) {
@@ -228,9 +235,12 @@ void MqttBridge::on_connect(int rc) {
   const std::string sub = s_.prefix + "/set/+";
   mosquitto_subscribe(mosq_, nullptr, sub.c_str(), 1);
   publish(s_.prefix + "/availability", "online", true);
-  if (s_.discovery)
-    publish(s_.discovery_prefix + "/number/" + mqtt_node_id(s_.prefix) + "/volume/config",
-            discovery_json(), true);
+  if (s_.discovery) {
+    const std::string node = mqtt_node_id(s_.prefix);
+    publish(s_.discovery_prefix + "/number/" + node + "/volume/config", discovery_json(false),
+            true);
+    publish(s_.discovery_prefix + "/button/" + node + "/gust/config", discovery_json(true), true);
+  }
   publish_state(true);
 }
 

@@ -11,7 +11,8 @@
 //   PREFIX/availability  retained "online"; "offline" on exit and as the
 //                        last will (the broker sends it if candela vanishes)
 //   DISCOVERY/number/NODE/volume/config  Home Assistant discovery: a volume
-//                        number entity (slider 0..1) on a "Candela" device
+//                        number entity (slider 0..1) on a "Candela" device,
+//   DISCOVERY/button/NODE/gust/config    and a gust button (set/gust "front")
 // A broker that is absent, refuses the login or goes away is logged once per
 // outage and retried with backoff (1 s doubling to reconnect_max); the frame
 // loop never waits on it (it only reads and writes InputHub's atomics).
@@ -78,7 +79,7 @@ class MqttBridge {
   void on_message(const mosquitto_message* m);
   void publish(const std::string& topic, const std::string& payload, bool retain, int qos = 1);
   void publish_state(bool force);
-  std::string discovery_json() const;
+  std::string discovery_json(bool gust) const;  // the volume number, or the gust button
   bool wait_stop(int64_t ms);
 
   MqttSettings s_;

@@ -217,6 +217,13 @@ def case_commands():
         check(d.get("availability_topic") == PREFIX + "/availability"
               and d.get("payload_available") == "online" and d.get("payload_not_available") == "offline",
               "availability online/offline", d)
+    gust = client.wait("homeassistant/button/%s/gust/config" % node)
+    check(gust is not None, "and for a gust button", candela_log())
+    if gust and disc:
+        g = json.loads(gust)
+        check(g.get("command_topic") == PREFIX + "/set/gust" and g.get("payload_press") == "front"
+              and g.get("unique_id") and g.get("device") == json.loads(disc).get("device"),
+              "the button presses set/gust front, on the same device", g)
     st = client.wait(PREFIX + "/state")
     check(st is not None and abs(json.loads(st)["volume"] - 0.6) < 1e-3, "state: volume 0.6 at first", st)
     client.send("volume", "0.25")
