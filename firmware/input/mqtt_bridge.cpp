@@ -1,6 +1,7 @@
 #include "input/mqtt_bridge.h"
 
 #include <mosquitto.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -107,6 +108,10 @@ MqttSettings parse_mqtt(ParamReader& r, bool present) {
       if (static_cast<unsigned char>(c) < 0x20)
         r.fail("password_file", "expected a password without control characters");
     s.password = text;
+    struct stat st {};
+    if (stat(path.c_str(), &st) == 0 && (st.st_mode & 077))
+      LOG_WARN("%s: mqtt.password_file %s can be read by others (mode %03o); chmod 600 it",
+               r.file().c_str(), path.c_str(), static_cast<unsigned>(st.st_mode & 0777));
   }
   s.keepalive_s = static_cast<int>(r.integer("keepalive", s.keepalive_s, 5, 3600));
   s.reconnect_max_s = static_cast<int>(r.integer("reconnect_max", s.reconnect_max_s, 1, 300));

@@ -387,6 +387,15 @@ def case_config():
     r = subprocess.run([CANDELA, "--config", path, "--test-pattern", "--check"],
                        capture_output=True, text=True, timeout=60)
     check(r.returncode == 0, "a good [mqtt] passes --check", r.stderr)
+    os.chmod(pw, 0o644)
+    r = subprocess.run([CANDELA, "--config", path, "--test-pattern", "--check"],
+                       capture_output=True, text=True, timeout=60)
+    check("can be read by others (mode 644); chmod 600 it" in r.stderr,
+          "a password file others can read is warned about", r.stderr)
+    os.chmod(pw, 0o600)
+    r = subprocess.run([CANDELA, "--config", path, "--test-pattern", "--check"],
+                       capture_output=True, text=True, timeout=60)
+    check("can be read by others" not in r.stderr, "not when it is 0600", r.stderr)
 
 
 try:
