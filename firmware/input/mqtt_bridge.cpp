@@ -288,7 +288,7 @@ void MqttBridge::run() {
   int64_t backoff_ms = 1000;
   const int64_t max_ms = int64_t{s_.reconnect_max_s} * 1000;
   bool socket_up = false;
-  int64_t last_check = 0, last_refresh = 0;
+  int64_t last_check = 0, last_refresh = 0, connecting_since = 0;
   while (!stop_.load(std::memory_order_acquire)) {
     if (!socket_up) {
       const int rc = mosquitto_connect_async(mosq_, s_.host.c_str(), s_.port, s_.keepalive_s);
@@ -305,8 +305,14 @@ void MqttBridge::run() {
         continue;
       }
       socket_up = true;
+      connecting_since = monotonic_ns();
     }
-    const int rc = mosquitto_loop(mosq_, 100, 1);
+    int rc = mosquitto_loop(mosq_, 100, 1);
+    // Something on the port that never answers like a broker: give up on
+    // it after the keepalive, as libmosquitto would on a silent broker.
+    if (rc == MOSQ_ERR_SUCCESS && !connected_ && !refused_ &&
+        monotonic_ns() - connecting_since > int64_t{s_.keepalive_s} * 1'000'000'000)
+      rc = MOSQ_ERR_KEEPALIVE;
     if (rc != MOSQ_ERR_SUCCESS || refused_) {
       refused_ = false;
       if (!reported_)

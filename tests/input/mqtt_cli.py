@@ -18,6 +18,8 @@ paho-mqtt (Debian `python3-paho-mqtt`).
                 appears on the port candela connects to it (the backoff retries)
   password      a wrong password: reported once, clearly (not authorised, check
                 username and password_file); the right one: connected
+  silent        a port that accepts and never answers: given up after the keepalive,
+                retried, logged once
   off           no [mqtt]: candela opens no TCP socket at all
   config        [mqtt] mistakes are refused by --check naming the key
 """
@@ -336,6 +338,32 @@ def case_password():
     broker.stop()
 
 
+def case_silent():
+    # Something on the port that accepts and never answers like a broker.
+    srv = socket.socket()
+    srv.bind(("127.0.0.1", 0))
+    srv.listen(4)
+    port = srv.getsockname()[1]
+    ctl = os.path.join(WORK, "ctl")
+    p = start_candela(write_config(port, "keepalive = 5\n"), "--control", ctl)
+    srv.settimeout(20)
+    first, _ = srv.accept()
+    t0 = time.monotonic()
+    check(frames_advance(ctl, 60), "the display runs while the port stays silent")
+    try:
+        second, _ = srv.accept()  # candela gave up on the first and tries again
+        waited = time.monotonic() - t0
+        check(4 <= waited <= 15, "gave up after the keepalive (5 s) and retried (%.1f s)" % waited)
+        second.close()
+    except socket.timeout:
+        check(False, "candela never gave up on a silent port", candela_log())
+    first.close()
+    log = candela_log()
+    check(log.count("with backoff") == 1, "logged once", log)
+    check(stop_candela(p) == 0, "exit 0")
+    srv.close()
+
+
 def tcp_sockets(pid):
     inodes = set()
     for fd in os.listdir("/proc/%d/fd" % pid):
@@ -400,7 +428,8 @@ def case_config():
 
 try:
     {"commands": case_commands, "reconnect": case_reconnect, "absent": case_absent,
-     "password": case_password, "off": case_off, "config": case_config}[CASE]()
+     "password": case_password, "off": case_off, "config": case_config,
+     "silent": case_silent}[CASE]()
 finally:
     for p in procs:
         if p.poll() is None:
