@@ -13,9 +13,14 @@
 //   DISCOVERY/number/NODE/volume/config  Home Assistant discovery: a volume
 //                        number entity (slider 0..1) on a "Candela" device,
 //   DISCOVERY/button/NODE/gust/config    and a gust button (set/gust "front")
-// A broker that is absent, refuses the login or goes away is logged once per
-// outage and retried with backoff (1 s doubling to reconnect_max); the frame
-// loop never waits on it (it only reads and writes InputHub's atomics).
+// A broker that is absent, refuses the login, goes away or never answers
+// (given up after the keepalive) is logged once per outage and retried with
+// backoff (1 s doubling to reconnect_max); the frame loop never waits on it
+// (it only reads and writes InputHub's atomics). The thread drives
+// mosquitto_loop() itself rather than mosquitto_loop_start(): libmosquitto's
+// own loop ends for good on a DNS failure (MOSQ_ERR_EAI). Connecting is
+// non-blocking; only a host name's DNS lookup can hold the thread (never
+// the display).
 #pragma once
 
 #include <atomic>
