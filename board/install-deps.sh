@@ -13,6 +13,7 @@ runtime=(
   libegl1 libgles2 libgbm1 libdrm2 libpng16-16 libfftw3-single3
   libegl-mesa0 libgl1-mesa-dri libgpiod2 libx11-6
   libasound2  # sound (ALSA)
+  libmosquitto1  # MQTT ([mqtt] in the kiosk config)
   libcamera-ipa  # pulls in the libcamera library of the release (0.0.3 on bookworm)
 )
 build=(
@@ -21,6 +22,7 @@ build=(
   libtomlplusplus-dev libcli11-dev libpng-dev libfftw3-dev
   libeigen3-dev libgpiod-dev gpiod
   libasound2-dev
+  libmosquitto-dev
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev zlib1g-dev
@@ -29,6 +31,8 @@ build=(
   dpkg-dev lintian
 )
 tests=(
+  # MQTT tests (tests/input/mqtt_cli.py): a real broker on loopback, and a client
+  mosquitto python3-paho-mqtt
   ffmpeg python3 python3-numpy python3-scipy python3-pil imagemagick xvfb xauth
   # virtual board (board/virtual): QEMU + Debian kernel + out-of-tree drivers
   qemu-system-x86 busybox-static cpio kmod gzip xz-utils bc flex bison libelf-dev

@@ -16,6 +16,9 @@ KioskConfig load_config_file(const std::string& path) {
   if (r.has("scene") && c.scene.empty())
     r.fail("scene", "expected a scene file's path, got an empty string");
   c.display = r.string("display", "", {"auto", "drm", "window", "headless"});
+  const bool has_mqtt = r.has("mqtt");
+  ParamReader mqtt = r.table("mqtt");
+  c.mqtt = parse_mqtt(mqtt, has_mqtt);
   r.finish();
   return c;
 }

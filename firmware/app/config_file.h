@@ -4,15 +4,20 @@
 // by key: errors are ConfigError "file: key: expected ...".
 //   scene = "/usr/share/candela/scenes/default.toml"   # relative: to this file
 //   display = "drm"                                    # auto | drm | window | headless
+//   [mqtt]                                             # optional: home automation
+//   host = "192.168.1.10"                              # (input/mqtt_bridge.h, README "MQTT")
 #pragma once
 
 #include <string>
+
+#include "input/mqtt_bridge.h"
 
 namespace candela {
 
 struct KioskConfig {
   std::string scene;    // empty: the built-in default scene
   std::string display;  // empty: not given (the command line's, or auto)
+  MqttSettings mqtt;    // enabled when the file has an [mqtt] table
 };
 
 KioskConfig load_config_file(const std::string& path);

@@ -28,7 +28,11 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
     step.step = clock.steps();
     step.time = clock.seconds();
     scene.update(step);
-    if (s.sound) s.sound->push(scene.sound_cue());
+    if (s.sound) {
+      SoundCue cue = scene.sound_cue();
+      if (s.inputs) cue.volume = s.inputs->volume();  // the `volume` commands' (an atomic)
+      s.sound->push(cue);
+    }
     clock.tick();
   };
   // Frame 0 shows the state after the first step.

@@ -15,6 +15,7 @@
 #include "core/log.h"
 #include "display/display.h"
 #include "input/input_hub.h"
+#include "input/mqtt_bridge.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
 #include "sound/sound_output.h"
@@ -138,7 +139,14 @@ int main(int argc, char** argv) {
     ls.realtime = opt.realtime;
     ls.stats = &stats;
     InputHub inputs(desc.inputs, desc.wind, opt.control);
+    inputs.set_volume(desc.sound.volume);
     inputs.start();
+    // Off unless the config has [mqtt]: nothing connects or listens then.
+    std::unique_ptr<MqttBridge> mqtt;
+    if (opt.mqtt.enabled) {
+      mqtt = std::make_unique<MqttBridge>(opt.mqtt, inputs);
+      mqtt->start();
+    }
     ls.inputs = &inputs;
     ls.notify = &notify;
     ls.sound = sound.get();
@@ -146,6 +154,7 @@ int main(int argc, char** argv) {
     const LoopResult r = run_frame_loop(*display, scene, ls);
     notify.stopping();
     const double cpu = process_cpu_seconds() - cpu0;
+    if (mqtt) mqtt->stop();      // "offline" on the availability topic
     if (sound) sound->finish();  // the .wav complete before the video muxes it
     display->finish();
     if (g_stop) LOG_INFO("stopped by %s; outputs finished", signal_name(g_signal));

@@ -49,7 +49,7 @@ int parse_options(int argc, char** argv, Options& o) {
   // ("too many levels of symbolic links", "not a regular file (a FIFO)").
   app.add_option("--scene", o.scene, "Scene file (TOML); default: the built-in scene");
   app.add_option("--config", o.config,
-                 "Kiosk settings (TOML: scene, display), e.g. /etc/candela/candela.toml; "
+                 "Kiosk settings (TOML: scene, display, [mqtt]), e.g. /etc/candela/candela.toml; "
                  "--scene, --test-pattern and --display on the command line win");
   app.add_flag("--test-pattern", o.test_pattern,
                "Show colour bars, a frame counter and a moving marker");
@@ -99,6 +99,7 @@ int parse_options(int argc, char** argv, Options& o) {
     }
     if (o.scene.empty() && !o.test_pattern) o.scene = c.scene;
     if (!c.display.empty() && app.count("--display") == 0) o.display.kind = c.display;
+    o.mqtt = std::move(c.mqtt);
   }
   if (!size.empty()) {
     const auto x = size.find('x');

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "display/display.h"
+#include "input/mqtt_bridge.h"
 
 namespace candela {
 
@@ -22,6 +23,7 @@ struct Options {
   uint64_t seed = 0;    // 0: the scene's seed
   std::string log_level = "info";
   std::string control;  // control socket path (firmware/input/control_channel.h); empty: none
+  MqttSettings mqtt;    // the --config file's [mqtt] (off without one)
 };
 
 // Parses argv. Returns -1 to go on, or an exit status (after --help, or a

@@ -22,7 +22,8 @@
 namespace candela {
 
 const char* const kControlHelp =
-    "commands: gust SIDE [M/S] | blowout [SIDE] [M/S] | wind X Z | calm | state | ping | help "
+    "commands: gust SIDE [M/S] | blowout [SIDE] [M/S] | wind X Z | calm | volume [0..1] | state | "
+    "ping | help "
     "(SIDE: left right front back)";
 
 namespace {
@@ -96,6 +97,16 @@ ControlCommand parse_control_command(std::string_view line, const WindSpec& wind
     c.kind = verb == "state"  ? ControlCommand::Kind::kState
              : verb == "ping" ? ControlCommand::Kind::kPing
                               : ControlCommand::Kind::kHelp;
+    return c;
+  }
+  if (verb == "volume") {
+    c.kind = ControlCommand::Kind::kVolume;
+    double v = 0;
+    if (w.size() == 1) return c;
+    if (w.size() != 2 || !parse_number(w[1], 0, 1, v))
+      return error("volume: expected one level in [0, 1] (0 silent, 1 full), e.g. \"volume 0.5\"" +
+                   (w.size() == 2 ? ", got \"" + echo(w[1]) + "\"" : std::string()));
+    c.volume = static_cast<float>(v);
     return c;
   }
   c.kind = ControlCommand::Kind::kWind;

@@ -5,10 +5,11 @@
 //   blowout [SIDE] [M/S] a strong gust that can blow candles out (default: front, 4x gust_speed)
 //   wind X Z            set the steady wind (m/s; x: to the right, z: toward the viewer)
 //   calm                steady wind 0
+//   volume [0..1]       sets the master sound volume (glides, no click); alone: answers it
 //   state               one JSON line: step, frame, wind, events, inputs, ...
 //   ping                answers "pong"
 //   help                lists the commands
-// Wind commands answer "ok"; mistakes answer "error: ..." and change nothing.
+// Wind and volume commands answer "ok"; mistakes answer "error: ..." and change nothing.
 #pragma once
 
 #include <poll.h>
@@ -24,9 +25,10 @@
 namespace candela {
 
 struct ControlCommand {
-  enum class Kind { kWind, kState, kPing, kHelp, kError } kind = Kind::kError;
+  enum class Kind { kWind, kVolume, kState, kPing, kHelp, kError } kind = Kind::kError;
   WindEvent event;
-  std::string error;  // kError: what was wrong
+  float volume = -1.0f;  // kVolume: 0..1; below 0: "volume" alone (a question)
+  std::string error;     // kError: what was wrong
 };
 ControlCommand parse_control_command(std::string_view line, const WindSpec& wind);
 extern const char* const kControlHelp;

@@ -108,6 +108,7 @@ void InputHub::drain(WindField& wind) {
   };
   while (input_queue_.pop(e)) apply(e);
   while (camera_queue_.pop(e)) apply(e);
+  while (mqtt_queue_.pop(e)) apply(e);
 }
 
 void InputHub::publish(uint64_t step, uint64_t frame, WindSample wind, int candles_lit) {
@@ -136,16 +137,18 @@ std::string InputHub::state_json() const {
   std::snprintf(head, sizeof head,
                 "{\"frame\":%llu,\"step\":%llu,\"wind\":{\"x\":%.4f,\"z\":%.4f},\"events\":%llu,"
                 "\"control_events\":%llu,\"dropped\":%llu,\"latency_ms\":{\"last\":%s,\"max\":%s},"
-                "\"candles_lit\":%s,\"inputs\":[",
+                "\"candles_lit\":%s,\"volume\":%.3f,\"inputs\":[",
                 static_cast<unsigned long long>(frame),
                 static_cast<unsigned long long>(step_.load(std::memory_order_relaxed)),
                 Fixed::from_raw(wind_x_.load(std::memory_order_relaxed)).to_double(),
                 Fixed::from_raw(wind_z_.load(std::memory_order_relaxed)).to_double(),
                 static_cast<unsigned long long>(applied_.load(std::memory_order_acquire)),
                 static_cast<unsigned long long>(applied_control_.load(std::memory_order_relaxed)),
-                static_cast<unsigned long long>(input_queue_.dropped() + camera_queue_.dropped()),
+                static_cast<unsigned long long>(input_queue_.dropped() + camera_queue_.dropped() +
+                                                mqtt_queue_.dropped()),
                 ms(last_latency_ns_.load(std::memory_order_relaxed)).c_str(),
-                ms(max_latency_ns_.load(std::memory_order_relaxed)).c_str(), lit);
+                ms(max_latency_ns_.load(std::memory_order_relaxed)).c_str(), lit,
+                static_cast<double>(volume()));
   std::string out = head;
   bool first = true;
   for (size_t i = 0; i < specs_.size(); ++i) {
@@ -179,7 +182,24 @@ std::string InputHub::state_json() const {
   return out;
 }
 
-std::string InputHub::answer(std::string_view line) {
+std::string InputHub::summary_json() const {
+  char buf[384];
+  char lit[16] = "null";
+  if (const int n = candles_lit_.load(std::memory_order_relaxed); n >= 0)
+    std::snprintf(lit, sizeof lit, "%d", n);
+  std::snprintf(buf, sizeof buf,
+                "{\"frame\":%llu,\"step\":%llu,\"wind\":{\"x\":%.4f,\"z\":%.4f},"
+                "\"volume\":%.3f,\"candles_lit\":%s,\"events\":%llu}",
+                static_cast<unsigned long long>(frame_.load(std::memory_order_acquire)),
+                static_cast<unsigned long long>(step_.load(std::memory_order_relaxed)),
+                Fixed::from_raw(wind_x_.load(std::memory_order_relaxed)).to_double(),
+                Fixed::from_raw(wind_z_.load(std::memory_order_relaxed)).to_double(),
+                static_cast<double>(volume()), lit,
+                static_cast<unsigned long long>(applied_.load(std::memory_order_acquire)));
+  return buf;
+}
+
+std::string InputHub::answer(std::string_view line, Origin origin) {
   const ControlCommand c = parse_control_command(line, wind_spec_);
   switch (c.kind) {
     case ControlCommand::Kind::kWind: {
@@ -187,10 +207,21 @@ std::string InputHub::answer(std::string_view line) {
       e.wind = c.event;
       e.cause_ns = monotonic_ns();
       e.source = kControlSource;
-      return input_queue_.push(e) ? "ok" : "error: event queue full";
+      const bool queued = origin == Origin::kMqtt ? mqtt_queue_.push(e) : input_queue_.push(e);
+      return queued ? "ok" : "error: event queue full";
+    }
+    case ControlCommand::Kind::kVolume: {
+      char buf[32];
+      if (c.volume < 0) {
+        std::snprintf(buf, sizeof buf, "%.3f", static_cast<double>(volume()));
+        return buf;
+      }
+      set_volume(c.volume);
+      return "ok";
     }
     case ControlCommand::Kind::kState:
-      return state_json();
+      // The inputs' own status is the input thread's to read.
+      return origin == Origin::kMqtt ? summary_json() : state_json();
     case ControlCommand::Kind::kPing:
       return "pong";
     case ControlCommand::Kind::kHelp:

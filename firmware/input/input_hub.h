@@ -45,8 +45,21 @@ class InputHub {
 
   // The `state` reply (one JSON line). Input thread.
   std::string state_json() const;
-  // One control command line -> one reply line. Input thread.
-  std::string answer(std::string_view line);
+  // What any thread may read (atomics only): frame, wind, volume, candles
+  // lit, events. MQTT's retained state.
+  std::string summary_json() const;
+  // Where a command line came from: each origin has its own lock-free queue
+  // to the frame loop (one producer each).
+  enum class Origin { kControlSocket, kMqtt };
+  // One control command line -> one reply line; the one parser for the
+  // control socket (input thread) and MQTT (its client thread).
+  std::string answer(std::string_view line, Origin origin = Origin::kControlSocket);
+
+  // The master sound volume, 0..1 (any thread; an atomic): the [sound]
+  // volume at start, then what `volume` commands set. The frame loop puts it
+  // into every step's SoundCue; the synthesiser glides to it.
+  void set_volume(float v) { volume_.store(v, std::memory_order_relaxed); }
+  float volume() const { return volume_.load(std::memory_order_relaxed); }
 
   uint64_t events_applied() const { return applied_.load(std::memory_order_relaxed); }
 
@@ -63,6 +76,7 @@ class InputHub {
   std::unique_ptr<CameraSource> camera_;
   SpscQueue<InputEvent, 256> input_queue_;  // producer: the input thread
   SpscQueue<InputEvent, 64> camera_queue_;  // producer: the camera thread
+  SpscQueue<InputEvent, 64> mqtt_queue_;    // producer: the MQTT client thread
   std::unique_ptr<QueueSink> input_sink_;
   std::unique_ptr<QueueSink> camera_sink_;
   int stop_fd_ = -1;
@@ -74,6 +88,7 @@ class InputHub {
   std::atomic<int64_t> last_latency_ns_{-1}, max_latency_ns_{-1};
   std::unique_ptr<std::atomic<uint64_t>[]> applied_by_source_;
   std::atomic<uint64_t> applied_control_{0};
+  std::atomic<float> volume_{0.6f};
 };
 
 }  // namespace candela

@@ -26,6 +26,10 @@ struct SoundCue {
   uint16_t blowouts = 0;  // candles that went out in this step (a puff each)
   uint16_t sputters = 0;  // candles whose flame clings to the wick in wind (they sputter)
   uint16_t lit = 0;       // candles alight
+  // The master volume wanted now, 0..1 (the control socket's or MQTT's
+  // `volume`, set by the frame loop); below 0: the [sound] table's volume.
+  // The synthesiser glides to it (about 15 ms), so a change never clicks.
+  float volume = -1.0f;
 
   // Folds a later step into this one (a backlog on the live audio thread):
   // events add up, levels are the latest.
@@ -36,6 +40,7 @@ struct SoundCue {
     blowouts = static_cast<uint16_t>(std::min<int>(0xffff, blowouts + later.blowouts));
     sputters = later.sputters;
     lit = later.lit;
+    volume = later.volume;
   }
 };
 

@@ -1,6 +1,7 @@
 #include "sound/sound_synth.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace candela {
 namespace {
@@ -16,6 +17,8 @@ uint64_t part_seed(uint64_t seed, uint64_t part) {
 SoundSynth::SoundSynth(const SoundSettings& s, int steps_per_second, uint64_t seed)
     : steps_per_second_(std::clamp(steps_per_second, 10, 1000)),
       volume_(s.volume),
+      gain_(s.volume),
+      glide_(1.0f - std::exp(-1.0f / (kVolumeGlideSeconds * static_cast<float>(kSampleRate)))),
       voices_(part_seed(seed, 1)),
       roar_(part_seed(seed, 2), s.roar),
       fire_(part_seed(seed, 3), s.crackle_rate, s.pop_rate, s.knock_rate, s.crackle),
@@ -40,7 +43,17 @@ int SoundSynth::render_step(const SoundCue& cue, std::span<float> out) {
   roar_.render(o, n);
   whoosh_.render(o, n);
   voices_.render(o, n);
-  for (int i = 0; i < n; ++i) o[i] = dsp::soft_clip(o[i] * volume_);
+  const float target = cue.volume >= 0 ? std::min(cue.volume, 1.0f) : volume_;
+  if (gain_ == target) {
+    for (int i = 0; i < n; ++i) o[i] = dsp::soft_clip(o[i] * gain_);
+  } else {
+    // A one-pole glide, sample by sample: a volume step never clicks.
+    for (int i = 0; i < n; ++i) {
+      gain_ += (target - gain_) * glide_;
+      o[i] = dsp::soft_clip(o[i] * gain_);
+    }
+    if (std::fabs(gain_ - target) < 1e-4f) gain_ = target;  // -80 dB: inaudible
+  }
   ++steps_;
   samples_ += static_cast<uint64_t>(n);
   return n;

@@ -39,10 +39,16 @@ class SoundSynth {
   const FireEvents& fire_events() const { return fire_; }
   const CandleSounds& candle_sounds() const { return candles_; }
   const Whoosh& whoosh() const { return whoosh_; }
+  // The master gain applied to the last sample rendered (it glides toward
+  // each cue's volume with a 15 ms time constant).
+  float gain() const { return gain_; }
+  static constexpr float kVolumeGlideSeconds = 0.015f;
 
  private:
   int steps_per_second_;
-  float volume_;
+  float volume_;  // the [sound] volume: the target while cues carry none
+  float gain_;    // the master gain now
+  float glide_;   // per-sample fraction of the way to the target
   ImpulseVoices voices_;
   RoarBed roar_;
   FireEvents fire_;

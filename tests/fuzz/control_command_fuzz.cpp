@@ -4,7 +4,8 @@
 // line must give a command or an error of bounded length (issue 15: a 10 MB
 // bad value was echoed whole; "wind 0x10 0" was taken as 16), and every wind
 // command it accepts must drive the wind field for a few seconds without
-// going past what its gusts and steady wind allow together.
+// going past what its gusts and steady wind allow together; every volume it
+// accepts is a level in [0, 1].
 //   build with clang: ninja -C build-fuzz control_command_fuzz (tests/fuzz/run-fuzz.sh)
 #include <cstdint>
 #include <string_view>
@@ -32,6 +33,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if (c.error.empty() || c.error.size() > 400) __builtin_trap();
       continue;
     }
+    // A volume is a level in [0, 1], or a question (below 0, exactly -1).
+    if (c.kind == ControlCommand::Kind::kVolume &&
+        !((c.volume >= 0 && c.volume <= 1) || c.volume == -1.0f))
+      __builtin_trap();
     if (c.kind != ControlCommand::Kind::kWind) continue;
     const Fixed ax = c.event.x < Fixed{} ? -c.event.x : c.event.x;
     const Fixed az = c.event.z < Fixed{} ? -c.event.z : c.event.z;

@@ -105,6 +105,46 @@ TEST(ControlCommands, Parse) {
   }
 }
 
+// `volume`: a level in [0, 1], plain decimal; alone it is a question.
+TEST(ControlCommands, Volume) {
+  WindSpec w;
+  auto c = parse_control_command("volume 0.25", w);
+  ASSERT_EQ(c.kind, ControlCommand::Kind::kVolume);
+  EXPECT_FLOAT_EQ(c.volume, 0.25f);
+  c = parse_control_command("volume 1", w);
+  EXPECT_FLOAT_EQ(c.volume, 1.0f);
+  c = parse_control_command("  volume   0 ", w);
+  ASSERT_EQ(c.kind, ControlCommand::Kind::kVolume);
+  EXPECT_EQ(c.volume, 0.0f);
+  c = parse_control_command("volume", w);
+  ASSERT_EQ(c.kind, ControlCommand::Kind::kVolume);
+  EXPECT_LT(c.volume, 0.0f);
+  for (const char* bad : {"volume 1.01", "volume -0.1", "volume loud", "volume 0.5 0.5",
+                          "volume 0x1", "volume nan", "volume 1e-1", "volume inf"}) {
+    c = parse_control_command(bad, w);
+    EXPECT_EQ(c.kind, ControlCommand::Kind::kError) << bad;
+    EXPECT_NE(c.error.find("[0, 1]"), std::string::npos) << bad << ": " << c.error;
+  }
+  c = parse_control_command("volume " + std::string(900, '5'), w);
+  ASSERT_EQ(c.kind, ControlCommand::Kind::kError);
+  EXPECT_LT(c.error.size(), 200u) << c.error;
+}
+
+// Through the hub: `volume` sets what the frame loop hands the sound, and
+// `state` reports it; a refused level changes nothing.
+TEST(ControlSocket, VolumeIsSetAndReported) {
+  InputHub hub({}, WindSpec{});
+  hub.set_volume(0.6f);
+  EXPECT_EQ(hub.answer("volume"), "0.600");
+  EXPECT_EQ(hub.answer("volume 0.3"), "ok");
+  EXPECT_FLOAT_EQ(hub.volume(), 0.3f);
+  EXPECT_EQ(hub.answer("volume 3").rfind("error: volume:", 0), 0u);
+  EXPECT_FLOAT_EQ(hub.volume(), 0.3f);
+  EXPECT_NEAR(json_number(hub.state_json(), "volume"), 0.3, 1e-6);
+  EXPECT_EQ(hub.answer("volume 0", InputHub::Origin::kMqtt), "ok");
+  EXPECT_NEAR(json_number(hub.summary_json(), "volume"), 0.0, 1e-6);
+}
+
 // Issue 15 (12): strtod took "0x10" as 16; and a long bad word is not echoed whole.
 TEST(ControlCommands, OnlyPlainDecimalNumbers) {
   WindSpec w;

@@ -62,6 +62,7 @@ SoundCue busy_cue(uint64_t i) {
   c.wind = Fixed::from_int(static_cast<int32_t>((i / 60) % 4));
   c.blowouts = i % 90 == 0;
   c.sputters = 2;
+  c.volume = (i / 30) % 2 ? 0.9f : 0.2f;  // `volume` commands: the gain glides now and then
   return c;
 }
 

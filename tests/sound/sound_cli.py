@@ -8,8 +8,12 @@
                .wav is left beside it
   signal_mp4   SIGINT to the process group mid-render: exit 0, the mp4 is whole and
                still carries its sound
+  volume_socket  `volume 0.1` on the control socket early in a render: `state` reports
+               it, the last second of the .wav is 0.1/0.6 as loud as the same render
+               without it (same seed, same samples before the change), and the change
+               glides (no sample-to-sample jump larger than the fire's own)
 """
-import array, math, os, shutil, signal, subprocess, sys, tempfile, time, wave
+import array, json, math, os, shutil, signal, socket, subprocess, sys, tempfile, time, wave
 
 CASE, BUILD = sys.argv[1], sys.argv[2]
 CANDELA = os.path.join(BUILD, "firmware", "candela")
@@ -88,8 +92,77 @@ def case_signal_mp4():
     check("video" in s and "audio" in s, "the mp4 is whole and carries its sound", str(s))
 
 
+def read_wav(path):
+    with wave.open(path) as w:
+        return array.array("h", w.readframes(w.getnframes()))
+
+
+def rms(x):
+    return math.sqrt(sum(v * v for v in x) / max(1, len(x))) / 32768
+
+
+def case_volume_socket():
+    frames = 300  # 5 s of sound, one 800-sample step per frame (lockstep: deterministic)
+    a = os.path.join(WORK, "a.y4m")
+    r = render(a, frames)
+    check(r.returncode == 0, "reference render exits 0", r.stderr)
+    ctl = os.path.join(WORK, "ctl")
+    b = os.path.join(WORK, "b.y4m")
+    cmd = [CANDELA, "--display", "headless", "--scene", SCENE, "--size", "64x48", "--frames",
+           str(frames), "--out", b, "--log-level", "warn", "--control", ctl]
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 60
+    c = None
+    while c is None and time.monotonic() < deadline and p.poll() is None:
+        try:
+            c = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+            c.settimeout(5)
+            c.connect(ctl)
+        except OSError:
+            c = None
+            time.sleep(0.002)  # polling for the socket to appear, bounded by the deadline
+    check(c is not None, "the control socket answers")
+    state = {}
+    if c is not None:
+        f = c.makefile("rw")
+        def ask(line):
+            f.write(line + "\n")
+            f.flush()
+            return f.readline().strip()
+        first = json.loads(ask("state"))
+        check(abs(first["volume"] - 0.6) < 1e-3, "state reports the scene's volume 0.6 at first",
+              str(first.get("volume")))
+        check(ask("volume 1.5").startswith("error: volume: expected one level in [0, 1]"),
+              "volume 1.5 is refused, naming the range")
+        check(ask("volume 0.1") == "ok", "volume 0.1 answers ok")
+        check(ask("volume") == "0.100", "volume alone answers 0.100")
+        state = json.loads(ask("state"))
+        c.close()
+    check(abs(state.get("volume", -1) - 0.1) < 1e-3, "state reports volume 0.1", str(state))
+    rc = p.wait(timeout=300)
+    check(rc == 0, "the controlled render exits 0", p.stderr.read()[-800:])
+    ref, ctl_wav = read_wav(os.path.join(WORK, "a.wav")), read_wav(os.path.join(WORK, "b.wav"))
+    check(len(ref) == len(ctl_wav) == frames * 800, "both renders hold %d samples" % (frames * 800))
+    # Where the volume changed: the first sample that differs.
+    change = next((i for i in range(min(len(ref), len(ctl_wav))) if ref[i] != ctl_wav[i]), None)
+    check(change is not None and change < (frames - 120) * 800,
+          "the volume changed at least 2 s before the end (at sample %s)" % change)
+    last = slice(len(ref) - 48000, len(ref))
+    ratio = rms(ctl_wav[last]) / max(1e-9, rms(ref[last]))
+    check(abs(ratio - 0.1 / 0.6) < 0.02,
+          "the last second is 0.1/0.6 = 0.167 as loud as without the command (%.3f)" % ratio)
+    if change is not None:
+        def max_jump(x, lo, hi):
+            return max(abs(x[i + 1] - x[i]) for i in range(lo, hi - 1))
+        glide = max_jump(ctl_wav, change, min(len(ctl_wav), change + 4800))
+        before = max_jump(ref, change, min(len(ref), change + 4800))
+        check(glide <= before + 2, "the change glides: no jump beyond the fire's own "
+              "(%d vs %d in the reference)" % (glide, before))
+
+
 try:
-    {"wav_beside": case_wav_beside, "mp4_sound": case_mp4_sound, "signal_mp4": case_signal_mp4}[CASE]()
+    {"wav_beside": case_wav_beside, "mp4_sound": case_mp4_sound, "signal_mp4": case_signal_mp4,
+     "volume_socket": case_volume_socket}[CASE]()
 finally:
     shutil.rmtree(WORK, ignore_errors=True)
 sys.exit(1 if failures else 0)

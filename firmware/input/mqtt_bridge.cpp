@@ -1,0 +1,348 @@
+#include "input/mqtt_bridge.h"
+
+#include <mosquitto.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <mutex>
+
+#include "core/error.h"
+#include "core/file_read.h"
+#include "core/json.h"
+#include "core/log.h"
+#include "input/control_channel.h"
+#include "input/input_event.h"
+#include "input/input_hub.h"
+#include "scene/params.h"
+
+namespace candela {
+namespace {
+
+bool topic_level_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '-';
+}
+
+// "a/b-c/d_e": 1..128 characters, levels of [A-Za-z0-9_-], none empty
+// (no wildcards, no leading or trailing '/').
+bool valid_topic_prefix(const std::string& p) {
+  if (p.empty() || p.size() > 128 || p.front() == '/' || p.back() == '/') return false;
+  for (size_t i = 0; i < p.size(); ++i) {
+    if (p[i] == '/') {
+      if (p[i + 1] == '/') return false;
+    } else if (!topic_level_char(p[i])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool printable_word(const std::string& s, size_t max) {
+  if (s.empty() || s.size() > max) return false;
+  for (char c : s)
+    if (static_cast<unsigned char>(c) <= 0x20 || c == 0x7f) return false;
+  return true;
+}
+
+std::once_flag g_lib_once;
+
+}  // namespace
+
+std::string mqtt_node_id(const std::string& prefix) {
+  std::string id = prefix;
+  std::replace(id.begin(), id.end(), '/', '_');
+  return id;
+}
+
+MqttSettings parse_mqtt(ParamReader& r, bool present) {
+  MqttSettings s;
+  s.enabled = present && r.boolean("enabled", true);
+  if (!present) {
+    r.finish();
+    return s;
+  }
+  if (!r.has("host"))
+    r.fail("host", "missing; expected the broker's host name or address, e.g. \"127.0.0.1\"");
+  s.host = r.string("host", "");
+  bool host_ok = !s.host.empty() && s.host.size() <= 253;
+  for (char c : s.host) host_ok = host_ok && (topic_level_char(c) || c == '.' || c == ':');
+  if (!host_ok)
+    r.fail("host",
+           "expected a host name or address of 1..253 characters (letters, digits, '.', '-', "
+           "'_', ':'), got \"" +
+               echo_value(s.host) + "\"");
+  s.port = static_cast<int>(r.integer("port", s.port, 1, 65535));
+  s.prefix = r.string("prefix", s.prefix);
+  if (!valid_topic_prefix(s.prefix))
+    r.fail("prefix",
+           "expected a topic prefix of 1..128 characters: levels of letters, digits, '_' and "
+           "'-' joined by '/' (no wildcards, no empty level), got \"" +
+               echo_value(s.prefix) + "\"");
+  s.client_id = r.string("client_id", "");
+  if (r.has("client_id") && !printable_word(s.client_id, 64))
+    r.fail("client_id", "expected 1..64 printable characters without spaces");
+  if (s.client_id.empty()) s.client_id = "candela-" + mqtt_node_id(s.prefix);
+  s.username = r.string("username", "");
+  if (r.has("username") && !printable_word(s.username, 128))
+    r.fail("username", "expected 1..128 printable characters without spaces");
+  if (r.has("password_file")) {
+    if (s.username.empty())
+      r.fail("password_file", "given without a username; expected [mqtt] username too");
+    const std::string path = r.path("password_file");
+    std::string text;
+    try {
+      text = BoundedFile::open(path, FileKind::kScene).read_all();
+    } catch (const ConfigError& e) {
+      r.fail("password_file", std::string("cannot be read: ") + e.what());
+    }
+    if (text.size() > 1024)
+      r.fail("password_file", "expected a file of at most 1 KiB (the password on its first line)");
+    text = text.substr(0, text.find('\n'));
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    if (text.empty())
+      r.fail("password_file", "expected the password on the file's first line; it is empty");
+    for (char c : text)
+      if (static_cast<unsigned char>(c) < 0x20)
+        r.fail("password_file", "expected a password without control characters");
+    s.password = text;
+    struct stat st {};
+    if (stat(path.c_str(), &st) == 0 && (st.st_mode & 077))
+      LOG_WARN("%s: mqtt.password_file %s can be read by others (mode %03o); chmod 600 it",
+               r.file().c_str(), path.c_str(), static_cast<unsigned>(st.st_mode & 0777));
+  }
+  s.keepalive_s = static_cast<int>(r.integer("keepalive", s.keepalive_s, 5, 3600));
+  s.reconnect_max_s = static_cast<int>(r.integer("reconnect_max", s.reconnect_max_s, 1, 300));
+  s.discovery = r.boolean("discovery", s.discovery);
+  s.discovery_prefix = r.string("discovery_prefix", s.discovery_prefix);
+  if (!valid_topic_prefix(s.discovery_prefix))
+    r.fail("discovery_prefix",
+           "expected a topic prefix (levels of letters, digits, '_' and '-' joined by '/'), got "
+           "\"" +
+               echo_value(s.discovery_prefix) + "\"");
+  r.finish();
+  return s;
+}
+
+MqttBridge::MqttBridge(MqttSettings settings, InputHub& hub) : s_(std::move(settings)), hub_(hub) {}
+
+MqttBridge::~MqttBridge() { stop(); }
+
+void MqttBridge::start() {
+  std::call_once(g_lib_once, [] { mosquitto_lib_init(); });
+  mosq_ = mosquitto_new(s_.client_id.c_str(), true, this);
+  if (!mosq_) {
+    LOG_ERROR("mqtt: cannot create a libmosquitto client (%s); running without MQTT",
+              std::strerror(errno));
+    return;
+  }
+  if (!s_.username.empty())
+    mosquitto_username_pw_set(mosq_, s_.username.c_str(),
+                              s_.password.empty() ? nullptr : s_.password.c_str());
+  // Small messages, answered at once: no Nagle delay (40 ms with delayed ACKs).
+  mosquitto_int_option(mosq_, MOSQ_OPT_TCP_NODELAY, 1);
+  const std::string avail = s_.prefix + "/availability";
+  mosquitto_will_set(mosq_, avail.c_str(), 7, "offline", 1, true);
+  mosquitto_connect_callback_set(mosq_, [](mosquitto*, void* self, int rc) {
+    static_cast<MqttBridge*>(self)->on_connect(rc);
+  });
+  mosquitto_disconnect_callback_set(mosq_, [](mosquitto*, void* self, int rc) {
+    static_cast<MqttBridge*>(self)->on_disconnect(rc);
+  });
+  mosquitto_message_callback_set(mosq_, [](mosquitto*, void* self, const mosquitto_message* m) {
+    static_cast<MqttBridge*>(self)->on_message(m);
+  });
+  LOG_INFO("mqtt: broker %s:%d, topics %s/...", s_.host.c_str(), s_.port, s_.prefix.c_str());
+  thread_ = std::thread([this] { run(); });
+}
+
+void MqttBridge::stop() {
+  {
+    std::lock_guard lock(mu_);
+    stop_.store(true, std::memory_order_release);
+  }
+  cv_.notify_all();
+  if (thread_.joinable()) thread_.join();
+  if (mosq_) mosquitto_destroy(mosq_);
+  mosq_ = nullptr;
+}
+
+bool MqttBridge::wait_stop(int64_t ms) {
+  std::unique_lock lock(mu_);
+  return cv_.wait_for(lock, std::chrono::milliseconds(ms),
+                      [&] { return stop_.load(std::memory_order_acquire); });
+}
+
+void MqttBridge::publish(const std::string& topic, const std::string& payload, bool retain,
+                         int qos) {
+  mosquitto_publish(mosq_, nullptr, topic.c_str(), static_cast<int>(payload.size()), payload.data(),
+                    qos, retain);
+}
+
+// Volume, wind and candles lit: what a change of is published at once;
+// the frame counter alone is refreshed every 10 s.
+void MqttBridge::publish_state(bool force) {
+  const std::string state = hub_.summary_json();
+  const size_t at = state.find("\"wind\"");
+  const std::string key = at == std::string::npos ? state : state.substr(at);
+  if (!force && key == last_state_) return;
+  last_state_ = key;
+  // QoS 0: the next state supersedes it, and no PUBACK comes back to be
+  // held by the broker's Nagle (a command would then wait about 40 ms).
+  publish(s_.prefix + "/state", state, true, 0);
+}
+
+std::string MqttBridge::discovery_json(bool gust) const {
+  const std::string node = mqtt_node_id(s_.prefix);
+  const std::string& p = s_.prefix;
+  const std::string common =
+      ",\"availability_topic\":" + json_quote(p + "/availability") +
+      ",\"payload_available\":\"online\",\"payload_not_available\":\"offline\","
+      "\"device\":{\"identifiers\":[" +
+      json_quote("candela_" + node) + "],\"name\":" + json_quote("Candela " + p) +
+      ",\"manufacturer\":\"Candela\",\"model\":\"candela\",\"sw_version\":\"0.1.0\"}}";
+  if (gust)  // a button: a gust from the front at the scene's [wind] gust_speed
+    return "{\"name\":\"Gust\",\"unique_id\":" + json_quote(node + "_gust") +
+           ",\"object_id\":" + json_quote(node + "_gust") +
+           ",\"command_topic\":" + json_quote(p + "/set/gust") +
+           ",\"payload_press\":\"front\",\"icon\":\"mdi:weather-windy\"" + common;
+  return "{\"name\":\"Volume\",\"unique_id\":" + json_quote(node + "_volume") +
+         ",\"object_id\":" + json_quote(node + "_volume") +
+         ",\"command_topic\":" + json_quote(p + "/set/volume") +
+         ",\"state_topic\":" + json_quote(p + "/state") +
+         ",\"value_template\":\"{{ value_json.volume }}\",\"min\":0,\"max\":1,\"step\":0.01,"
+         "\"mode\":\"slider\",\"icon\":\"mdi:volume-high\"" +
+         common;
+}
+
+void MqttBridge::on_connect(int rc) {
+  if (rc != 0) {
+    // Refused: a wrong password, an unknown client... said once per reason.
+    if (rc != last_refusal_)
+      LOG_ERROR(
+          "mqtt: broker %s:%d refused the connection: %s%s; retrying with backoff (the display "
+          "runs on)",
+          s_.host.c_str(), s_.port, mosquitto_connack_string(rc),
+          rc == 4 || rc == 5 ? " (check [mqtt] username and password_file)" : "");
+    last_refusal_ = rc;
+    refused_ = true;
+    reported_ = true;
+    connected_ = false;
+    return;
+  }
+  connected_ = true;
+  last_refusal_ = 0;
+  connects_.fetch_add(1, std::memory_order_relaxed);
+  LOG_INFO("mqtt: connected to %s:%d%s", s_.host.c_str(), s_.port, reported_ ? " again" : "");
+  reported_ = false;
+  const std::string sub = s_.prefix + "/set/+";
+  mosquitto_subscribe(mosq_, nullptr, sub.c_str(), 1);
+  publish(s_.prefix + "/availability", "online", true);
+  if (s_.discovery) {
+    const std::string node = mqtt_node_id(s_.prefix);
+    publish(s_.discovery_prefix + "/number/" + node + "/volume/config", discovery_json(false),
+            true);
+    publish(s_.discovery_prefix + "/button/" + node + "/gust/config", discovery_json(true), true);
+  }
+  publish_state(true);
+}
+
+void MqttBridge::on_disconnect(int rc) {
+  if (connected_ && rc != 0 && !reported_) {
+    LOG_WARN("mqtt: lost the broker %s:%d (%s); reconnecting with backoff", s_.host.c_str(),
+             s_.port, mosquitto_strerror(rc));
+    reported_ = true;
+  }
+  connected_ = false;
+}
+
+void MqttBridge::on_message(const mosquitto_message* m) {
+  const std::string set = s_.prefix + "/set/";
+  if (!m->topic || std::strncmp(m->topic, set.c_str(), set.size()) != 0) return;
+  const std::string verb = m->topic + set.size();
+  const std::string_view payload(static_cast<const char*>(m->payload),
+                                 m->payloadlen > 0 ? static_cast<size_t>(m->payloadlen) : 0);
+  std::string reply;
+  bool ok = !verb.empty() && verb.size() <= 32 && payload.size() <= ControlServer::kMaxLine;
+  for (char c : verb) ok = ok && c >= 'a' && c <= 'z';
+  for (char c : payload) ok = ok && static_cast<unsigned char>(c) >= 0x20;
+  if (!ok) {
+    reply = "error: expected " + set +
+            "COMMAND (lower-case letters) with the arguments as a one-line payload of at most " +
+            std::to_string(ControlServer::kMaxLine) + " bytes";
+  } else {
+    // The control socket's one parser and handling: "volume" + " 0.4".
+    std::string line = verb;
+    if (!payload.empty()) line += ' ';
+    line.append(payload);
+    reply = hub_.answer(line, InputHub::Origin::kMqtt);
+  }
+  commands_.fetch_add(1, std::memory_order_relaxed);
+  publish(s_.prefix + "/reply", reply, false, 0);
+  publish_state(true);
+}
+
+void MqttBridge::run() {
+  int64_t backoff_ms = 1000;
+  const int64_t max_ms = int64_t{s_.reconnect_max_s} * 1000;
+  bool socket_up = false;
+  int64_t last_check = 0, last_refresh = 0, connecting_since = 0;
+  while (!stop_.load(std::memory_order_acquire)) {
+    if (!socket_up) {
+      const int rc = mosquitto_connect_async(mosq_, s_.host.c_str(), s_.port, s_.keepalive_s);
+      if (rc != MOSQ_ERR_SUCCESS) {
+        if (!reported_)
+          LOG_WARN(
+              "mqtt: cannot reach the broker %s:%d (%s); retrying with backoff (the display "
+              "runs on)",
+              s_.host.c_str(), s_.port,
+              rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc));
+        reported_ = true;
+        wait_stop(backoff_ms);
+        backoff_ms = std::min(max_ms, backoff_ms * 2);
+        continue;
+      }
+      socket_up = true;
+      connecting_since = monotonic_ns();
+    }
+    int rc = mosquitto_loop(mosq_, 100, 1);
+    // Something on the port that never answers like a broker: give up on
+    // it after the keepalive, as libmosquitto would on a silent broker.
+    if (rc == MOSQ_ERR_SUCCESS && !connected_ && !refused_ &&
+        monotonic_ns() - connecting_since > int64_t{s_.keepalive_s} * 1'000'000'000)
+      rc = MOSQ_ERR_KEEPALIVE;
+    if (rc != MOSQ_ERR_SUCCESS || refused_) {
+      refused_ = false;
+      if (!reported_)
+        LOG_WARN("mqtt: broker %s:%d: %s; retrying with backoff (the display runs on)",
+                 s_.host.c_str(), s_.port,
+                 rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc));
+      reported_ = true;
+      connected_ = false;
+      socket_up = false;
+      mosquitto_disconnect(mosq_);
+      wait_stop(backoff_ms);
+      backoff_ms = std::min(max_ms, backoff_ms * 2);
+      continue;
+    }
+    if (!connected_) continue;
+    backoff_ms = 1000;
+    const int64_t now = monotonic_ns() / 1'000'000;
+    if (now - last_check >= 100) {
+      last_check = now;
+      const bool refresh = now - last_refresh >= 10'000;
+      if (refresh) last_refresh = now;
+      publish_state(refresh);
+    }
+  }
+  if (connected_) {
+    publish(s_.prefix + "/availability", "offline", true);
+    mosquitto_disconnect(mosq_);
+    for (int i = 0; i < 20 && mosquitto_loop(mosq_, 50, 1) == MOSQ_ERR_SUCCESS; ++i) {
+    }
+  }
+}
+
+}  // namespace candela

@@ -1,0 +1,105 @@
+// Home automation over MQTT (issue 18; README "MQTT"): optional, off unless
+// the kiosk config has an [mqtt] table. Through libmosquitto (Debian
+// libmosquitto-dev), on a thread of its own:
+//   PREFIX/set/COMMAND   payload: the command's arguments; routed through the
+//                        control socket's parser (InputHub::answer), e.g.
+//                        PREFIX/set/volume "0.4", PREFIX/set/gust "left 2"
+//   PREFIX/reply         what each command answered ("ok", "error: ...")
+//   PREFIX/state         retained JSON: volume, wind, candles lit, frame
+//                        (InputHub::summary_json), on connect, after each
+//                        command and whenever volume/wind/candles change
+//   PREFIX/availability  retained "online"; "offline" on exit and as the
+//                        last will (the broker sends it if candela vanishes)
+//   DISCOVERY/number/NODE/volume/config  Home Assistant discovery: a volume
+//                        number entity (slider 0..1) on a "Candela" device,
+//   DISCOVERY/button/NODE/gust/config    and a gust button (set/gust "front")
+// A broker that is absent, refuses the login, goes away or never answers
+// (given up after the keepalive) is logged once per outage and retried with
+// backoff (1 s doubling to reconnect_max); the frame loop never waits on it
+// (it only reads and writes InputHub's atomics). The thread drives
+// mosquitto_loop() itself rather than mosquitto_loop_start(): libmosquitto's
+// own loop ends for good on a DNS failure (MOSQ_ERR_EAI). Connecting is
+// non-blocking; only a host name's DNS lookup can hold the thread (never
+// the display).
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <thread>
+
+struct mosquitto;
+struct mosquitto_message;
+
+namespace candela {
+
+class InputHub;
+class ParamReader;
+
+struct MqttSettings {
+  bool enabled = false;  // the config has an [mqtt] table
+  std::string host;      // required
+  int port = 1883;
+  std::string prefix = "candela";  // topic prefix: levels of [A-Za-z0-9_-], '/'-separated
+  std::string client_id;           // empty: "candela-" + the prefix's levels joined by '-'
+  std::string username;            // empty: anonymous
+  std::string password;            // read from password_file (its first line)
+  int keepalive_s = 30;
+  int reconnect_max_s = 30;  // the backoff's ceiling
+  bool discovery = true;     // publish Home Assistant discovery config
+  std::string discovery_prefix = "homeassistant";
+};
+
+// Reads [mqtt] (password_file resolved against the config's folder, read
+// now: a regular file of at most 1 KiB whose first line is the password).
+// Calls reader.finish(). Throws ConfigError naming file, key and what was
+// expected.
+MqttSettings parse_mqtt(ParamReader& reader, bool present);
+
+// Home Assistant's discovery node id for a prefix: '/' -> '_'.
+std::string mqtt_node_id(const std::string& prefix);
+
+class MqttBridge {
+ public:
+  MqttBridge(MqttSettings settings, InputHub& hub);
+  ~MqttBridge();
+  MqttBridge(const MqttBridge&) = delete;
+  MqttBridge& operator=(const MqttBridge&) = delete;
+
+  // Starts the client thread (connects in the background). Never throws for
+  // network trouble; a libmosquitto that cannot be set up is logged.
+  void start();
+  // Publishes "offline", disconnects, joins the thread.
+  void stop();
+
+  uint64_t connects() const { return connects_.load(std::memory_order_relaxed); }
+  uint64_t commands() const { return commands_.load(std::memory_order_relaxed); }
+
+ private:
+  void run();
+  void on_connect(int rc);
+  void on_disconnect(int rc);
+  void on_message(const mosquitto_message* m);
+  void publish(const std::string& topic, const std::string& payload, bool retain, int qos = 1);
+  void publish_state(bool force);
+  std::string discovery_json(bool gust) const;  // the volume number, or the gust button
+  bool wait_stop(int64_t ms);
+
+  MqttSettings s_;
+  InputHub& hub_;
+  mosquitto* mosq_ = nullptr;
+  std::thread thread_;
+  std::atomic<bool> stop_{false};
+  std::mutex mu_;  // the backoff wait only
+  std::condition_variable cv_;
+  bool connected_ = false;  // client thread only
+  bool reported_ = false;   // an outage already logged (client thread only)
+  int last_refusal_ = 0;    // the CONNACK refusal last logged
+  bool refused_ = false;    // the last CONNACK refused (client thread only)
+  std::string last_state_;  // client thread only
+  std::atomic<uint64_t> connects_{0}, commands_{0};
+};
+
+}  // namespace candela

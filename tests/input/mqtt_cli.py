@@ -1,0 +1,439 @@
+#!/usr/bin/env python3
+"""candela over MQTT against a real broker: tests/input/mqtt_cli.py CASE BUILD_DIR.
+
+Each case starts its own mosquitto (Debian `mosquitto`) on a free loopback port
+and waits on what it says and publishes (no sleeps as synchronisation: every
+wait is for a message, a log line or an exit, with a deadline). The client is
+paho-mqtt (Debian `python3-paho-mqtt`).
+
+  commands      Home Assistant discovery for a volume number entity (the schema's
+                required and used keys, the device, availability), retained
+                "online" and state; set/volume, set/wind, set/gust change the state
+                and the state topic reports it; a bad volume is refused with the
+                parser's message and changes nothing; SIGTERM: "offline", exit 0
+  reconnect     the broker stopped: candela runs on (frames advance), logs the loss
+                once; the broker started again: candela reconnects and republishes
+                its availability and state
+  absent        no broker at start: one log line, frames advance, and when a broker
+                appears on the port candela connects to it (the backoff retries)
+  password      a wrong password: reported once, clearly (not authorised, check
+                username and password_file); the right one: connected
+  silent        a port that accepts and never answers: given up after the keepalive,
+                retried, logged once
+  off           no [mqtt]: candela opens no TCP socket at all
+  config        [mqtt] mistakes are refused by --check naming the key
+"""
+import json, os, queue, select, shutil, signal, socket, subprocess, sys, tempfile, time
+
+import paho.mqtt.client as mqtt
+
+CASE, BUILD = sys.argv[1], sys.argv[2]
+CANDELA = os.path.join(BUILD, "firmware", "candela")
+WORK = tempfile.mkdtemp(prefix="candela-mqtt-")
+PREFIX = "test/candela%d" % os.getpid()
+failures = []
+procs = []
+
+
+def check(ok, what, detail=""):
+    print(("ok   " if ok else "FAIL ") + what + ("" if ok else " " + str(detail)[-1500:]))
+    if not ok:
+        failures.append(what)
+    return ok
+
+
+def free_port():
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+    s.close()
+    return port
+
+
+class Broker:
+    """mosquitto on 127.0.0.1:port; ready when it logs that it is running."""
+
+    def __init__(self, port, passwords=None):
+        conf = os.path.join(WORK, "mosquitto-%d.conf" % port)
+        with open(conf, "w") as f:
+            f.write("listener %d 127.0.0.1\npersistence false\nlog_dest stderr\nlog_type all\n" % port)
+            if passwords:
+                pw = os.path.join(WORK, "passwd")
+                open(pw, "w").close()
+                for user, password in passwords.items():
+                    subprocess.run(["mosquitto_passwd", "-b", pw, user, password], check=True)
+                # Started as root, mosquitto reads it as the user "mosquitto".
+                os.chmod(WORK, 0o755)
+                os.chmod(pw, 0o644)
+                f.write("allow_anonymous false\npassword_file %s\n" % pw)
+            else:
+                f.write("allow_anonymous true\n")
+        self.log_path = os.path.join(WORK, "mosquitto-%d.log" % port)
+        self.p = subprocess.Popen(["mosquitto", "-c", conf], stderr=subprocess.PIPE)
+        procs.append(self.p)
+        deadline = time.monotonic() + 20
+        self.log = b""
+        fd = self.p.stderr.fileno()
+        while time.monotonic() < deadline and b" running" not in self.log:
+            r, _, _ = select.select([fd], [], [], max(0, deadline - time.monotonic()))
+            chunk = os.read(fd, 65536) if r else b""
+            if not chunk:
+                break
+            self.log += chunk
+        if b" running" not in self.log:
+            raise RuntimeError("mosquitto did not start: " + self.log.decode(errors="replace"))
+        # From here on its log goes on into the pipe; drain it so it never blocks.
+        import threading
+        threading.Thread(target=lambda: [None for _ in iter(lambda: os.read(fd, 65536), b"")],
+                         daemon=True).start()
+
+    def stop(self):
+        self.p.terminate()
+        self.p.wait(timeout=20)
+
+
+class Client:
+    """Subscribed to everything candela publishes; messages queue up in order."""
+
+    def __init__(self, port, user=None, password=None):
+        self.q = queue.Queue()
+        self.c = mqtt.Client(client_id="test-%d-%d" % (os.getpid(), port), clean_session=True)
+        if user:
+            self.c.username_pw_set(user, password)
+        self.c.on_message = lambda c, u, m: self.q.put((m.topic, m.payload.decode(), m.retain))
+        connected = queue.Queue()
+        self.c.on_connect = lambda c, u, f, rc: connected.put(rc)
+        self.c.connect("127.0.0.1", port)
+        self.c.loop_start()
+        check(connected.get(timeout=10) == 0, "the test client connects")
+        got = queue.Queue()
+        self.c.on_subscribe = lambda c, u, mid, q: got.put(mid)
+        self.c.subscribe([(PREFIX + "/#", 1), ("homeassistant/#", 1)])
+        got.get(timeout=10)
+
+    def wait(self, topic, pred=lambda p: True, timeout=20):
+        """The first message on `topic` whose payload satisfies pred, or None."""
+        deadline = time.monotonic() + timeout
+        while True:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                return None
+            try:
+                t, p, r = self.q.get(timeout=left)
+            except queue.Empty:
+                return None
+            if t == topic and pred(p):
+                return p
+
+    def send(self, command, payload):
+        self.c.publish(PREFIX + "/set/" + command, payload, qos=1)
+
+    def close(self):
+        self.c.loop_stop()
+        self.c.disconnect()
+
+
+def write_config(port, extra=""):
+    path = os.path.join(WORK, "candela.toml")
+    with open(path, "w") as f:
+        f.write('[mqtt]\nhost = "127.0.0.1"\nport = %d\nprefix = "%s"\nreconnect_max = 1\n%s'
+                % (port, PREFIX, extra))
+    return path
+
+
+def start_candela(config, *extra):
+    log = open(os.path.join(WORK, "candela.log"), "w")
+    cmd = [CANDELA, "--display", "headless", "--test-pattern", "--size", "64x48", "--realtime",
+           "--log-level", "info", *extra]
+    if config:
+        cmd += ["--config", config]
+    p = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT)
+    procs.append(p)
+    return p
+
+
+def candela_log():
+    return open(os.path.join(WORK, "candela.log")).read()
+
+
+def stop_candela(p):
+    p.send_signal(signal.SIGTERM)
+    return p.wait(timeout=30)
+
+
+def ask(ctl, line, timeout=20):
+    """One control-socket question (the socket appears after start-up: waited for)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            s = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+            s.settimeout(5)
+            s.connect(ctl)
+            s.sendall((line + "\n").encode())
+            data = b""
+            while not data.endswith(b"\n"):
+                chunk = s.recv(4096)
+                if not chunk:
+                    break
+                data += chunk
+            s.close()
+            return data.decode().strip()
+        except OSError:
+            time.sleep(0.01)  # polling for the socket to appear, bounded by the deadline
+    return ""
+
+
+def frames_advance(ctl, frames, timeout=30):
+    """The display keeps drawing: `frames` more frames within the timeout."""
+    start = json.loads(ask(ctl, "state") or '{"frame": -1}')["frame"]
+    deadline = time.monotonic() + timeout
+    now = start
+    while time.monotonic() < deadline and now < start + frames:
+        now = json.loads(ask(ctl, "state") or '{"frame": -1}')["frame"]
+    return start >= 0 and now >= start + frames
+
+
+def case_commands():
+    port = free_port()
+    broker = Broker(port)
+    client = Client(port)
+    p = start_candela(write_config(port))
+    # In the order candela publishes them on connecting.
+    check(client.wait(PREFIX + "/availability", lambda x: x == "online") is not None, "online")
+    node = PREFIX.replace("/", "_")
+    disc = client.wait("homeassistant/number/%s/volume/config" % node)
+    check(disc is not None, "Home Assistant discovery config for a volume number entity", candela_log())
+    if disc:
+        d = json.loads(disc)
+        # Home Assistant's MQTT number: command_topic required; what we use of the rest.
+        check(d.get("command_topic") == PREFIX + "/set/volume", "command_topic is set/volume", d)
+        check(d.get("state_topic") == PREFIX + "/state", "state_topic is the state topic", d)
+        check(d.get("min") == 0 and d.get("max") == 1 and 0 < d.get("step", 0) <= 0.1,
+              "a 0..1 range with a fine step", d)
+        check(d.get("mode") in ("auto", "box", "slider"), "a valid mode", d)
+        check(d.get("value_template") == "{{ value_json.volume }}", "the volume read from the state JSON", d)
+        check(isinstance(d.get("unique_id"), str) and d["unique_id"], "a unique_id", d)
+        dev = d.get("device", {})
+        check(isinstance(dev.get("identifiers"), list) and dev["identifiers"] and dev.get("name"),
+              "a device with identifiers and a name", d)
+        check(d.get("availability_topic") == PREFIX + "/availability"
+              and d.get("payload_available") == "online" and d.get("payload_not_available") == "offline",
+              "availability online/offline", d)
+    gust = client.wait("homeassistant/button/%s/gust/config" % node)
+    check(gust is not None, "and for a gust button", candela_log())
+    if gust and disc:
+        g = json.loads(gust)
+        check(g.get("command_topic") == PREFIX + "/set/gust" and g.get("payload_press") == "front"
+              and g.get("unique_id") and g.get("device") == json.loads(disc).get("device"),
+              "the button presses set/gust front, on the same device", g)
+    st = client.wait(PREFIX + "/state")
+    check(st is not None and abs(json.loads(st)["volume"] - 0.6) < 1e-3, "state: volume 0.6 at first", st)
+    client.send("volume", "0.25")
+    check(client.wait(PREFIX + "/reply") == "ok", "set/volume 0.25 answers ok")
+    st = client.wait(PREFIX + "/state", lambda x: abs(json.loads(x)["volume"] - 0.25) < 1e-3)
+    check(st is not None, "the state reports volume 0.25")
+    client.send("volume", "2")
+    r = client.wait(PREFIX + "/reply")
+    check(r is not None and r.startswith("error: volume: expected one level in [0, 1]"),
+          "set/volume 2 is refused with the parser's message", r)
+    client.send("state", "")
+    st = client.wait(PREFIX + "/reply")
+    check(st is not None and abs(json.loads(st)["volume"] - 0.25) < 1e-3, "the refused volume changed nothing", st)
+    client.send("wind", "0.5 0")
+    check(client.wait(PREFIX + "/reply") == "ok", "set/wind answers ok")
+    # At the origin, past plane S: attenuated (0.38 of 0.5 in the test pattern's wind).
+    st = client.wait(PREFIX + "/state", lambda x: json.loads(x)["wind"]["x"] > 0.3)
+    check(st is not None, "the state reports the steady wind from the left")
+    client.send("gust", "right 3")
+    check(client.wait(PREFIX + "/reply") == "ok", "set/gust answers ok")
+    st = client.wait(PREFIX + "/state", lambda x: json.loads(x)["wind"]["x"] < 0)
+    check(st is not None, "the gust from the right shows in the state's wind")
+    # The round trip a home automation sees: command published -> reply received.
+    trips = []
+    for i in range(20):
+        t0 = time.monotonic()
+        client.send("volume", "0.%02d" % (30 + i))
+        if client.wait(PREFIX + "/reply") != "ok":
+            break
+        trips.append((time.monotonic() - t0) * 1000)
+    trips.sort()
+    check(len(trips) == 20, "20 volume commands answered")
+    if trips:
+        print("     MQTT round trip on loopback: median %.2f ms, max %.2f ms" % (trips[len(trips) // 2], trips[-1]))
+    client.send("dance", "now")
+    r = client.wait(PREFIX + "/reply")
+    check(r is not None and r.startswith("error: unknown command"), "an unknown command is refused", r)
+    rc = stop_candela(p)
+    check(client.wait(PREFIX + "/availability", lambda x: x == "offline") is not None, "offline on exit")
+    check(rc == 0, "exit 0", candela_log())
+    client.close()
+    broker.stop()
+
+
+def case_reconnect():
+    port = free_port()
+    ctl = os.path.join(WORK, "ctl")
+    broker = Broker(port)
+    client = Client(port)
+    p = start_candela(write_config(port), "--control", ctl)
+    check(client.wait(PREFIX + "/availability", lambda x: x == "online") is not None, "online")
+    client.close()
+    broker.stop()
+    check(frames_advance(ctl, 90), "the display runs on without the broker")
+    broker = Broker(port)
+    client = Client(port)  # a fresh broker holds nothing retained: what comes is republished
+    check(client.wait(PREFIX + "/availability", lambda x: x == "online", timeout=30) is not None,
+          "reconnected: online again", candela_log())
+    check(client.wait(PREFIX + "/state", timeout=30) is not None, "the state republished")
+    log = candela_log()
+    check(log.count("with backoff") == 1,
+          "the outage is logged once", log)
+    check("connected to 127.0.0.1:%d again" % port in log, "the reconnection is logged", log)
+    check(stop_candela(p) == 0, "exit 0")
+    client.close()
+    broker.stop()
+
+
+def case_absent():
+    port = free_port()
+    ctl = os.path.join(WORK, "ctl")
+    p = start_candela(write_config(port), "--control", ctl)
+    check(frames_advance(ctl, 180), "the display runs without a broker (3 s of frames)")
+    log = candela_log()
+    check(log.count("with backoff") == 1,
+          "logged once, not at every retry", log)
+    broker = Broker(port)
+    client = Client(port)
+    check(client.wait(PREFIX + "/availability", lambda x: x == "online", timeout=30) is not None,
+          "a broker that appears is connected to", candela_log())
+    check(stop_candela(p) == 0, "exit 0")
+    client.close()
+    broker.stop()
+
+
+def case_password():
+    port = free_port()
+    broker = Broker(port, passwords={"kiosk": "right-password", "test": "test"})
+    ctl = os.path.join(WORK, "ctl")
+    pw = os.path.join(WORK, "mqtt.pass")
+    with open(pw, "w") as f:
+        f.write("wrong-password\n")
+    os.chmod(pw, 0o600)
+    p = start_candela(write_config(port, 'username = "kiosk"\npassword_file = "mqtt.pass"\n'),
+                      "--control", ctl)
+    check(frames_advance(ctl, 120), "the display runs while the login is refused")
+    log = candela_log()
+    check(log.count("refused the connection") == 1, "the refusal is logged once", log)
+    check("not authorised" in log and "check [mqtt] username and password_file" in log,
+          "and says what to check", log)
+    check(stop_candela(p) == 0, "exit 0")
+    with open(pw, "w") as f:
+        f.write("right-password\n")
+    client = Client(port, "test", "test")
+    p = start_candela(os.path.join(WORK, "candela.toml"))
+    check(client.wait(PREFIX + "/availability", lambda x: x == "online") is not None,
+          "the right password connects", candela_log())
+    check(stop_candela(p) == 0, "exit 0")
+    client.close()
+    broker.stop()
+
+
+def case_silent():
+    # Something on the port that accepts and never answers like a broker.
+    srv = socket.socket()
+    srv.bind(("127.0.0.1", 0))
+    srv.listen(4)
+    port = srv.getsockname()[1]
+    ctl = os.path.join(WORK, "ctl")
+    p = start_candela(write_config(port, "keepalive = 5\n"), "--control", ctl)
+    srv.settimeout(20)
+    first, _ = srv.accept()
+    t0 = time.monotonic()
+    check(frames_advance(ctl, 60), "the display runs while the port stays silent")
+    try:
+        second, _ = srv.accept()  # candela gave up on the first and tries again
+        waited = time.monotonic() - t0
+        check(4 <= waited <= 15, "gave up after the keepalive (5 s) and retried (%.1f s)" % waited)
+        second.close()
+    except socket.timeout:
+        check(False, "candela never gave up on a silent port", candela_log())
+    first.close()
+    log = candela_log()
+    check(log.count("with backoff") == 1, "logged once", log)
+    check(stop_candela(p) == 0, "exit 0")
+    srv.close()
+
+
+def tcp_sockets(pid):
+    inodes = set()
+    for fd in os.listdir("/proc/%d/fd" % pid):
+        try:
+            link = os.readlink("/proc/%d/fd/%s" % (pid, fd))
+        except OSError:
+            continue
+        if link.startswith("socket:["):
+            inodes.add(link[8:-1])
+    tcp = set()
+    for table in ("tcp", "tcp6"):
+        with open("/proc/%d/net/%s" % (pid, table)) as f:
+            for row in f.readlines()[1:]:
+                tcp.add(row.split()[9])
+    return inodes & tcp
+
+
+def case_off():
+    ctl = os.path.join(WORK, "ctl")
+    p = start_candela(None, "--control", ctl)
+    check(frames_advance(ctl, 30), "candela runs")
+    check(not tcp_sockets(p.pid), "no TCP socket without [mqtt]", tcp_sockets(p.pid))
+    check("mqtt:" not in candela_log(), "and nothing about MQTT in the log", candela_log())
+    check(stop_candela(p) == 0, "exit 0")
+
+
+def case_config():
+    pw = os.path.join(WORK, "p")
+    open(pw, "w").write("secret\n")
+    for body, key, what in [
+        ('port = 1883\n', "mqtt.host", "missing"),
+        ('host = "a b"\n', "mqtt.host", "host name"),
+        ('host = "h"\nport = 0\n', "mqtt.port", "[1, 65535]"),
+        ('host = "h"\nprefix = "a/+/b"\n', "mqtt.prefix", "no wildcards"),
+        ('host = "h"\nprefix = "a//b"\n', "mqtt.prefix", "no empty level"),
+        ('host = "h"\npassword_file = "p"\n', "mqtt.password_file", "without a username"),
+        ('host = "h"\nusername = "u"\npassword_file = "nope"\n', "mqtt.password_file", ""),
+        ('host = "h"\nreconnect_max = 0\n', "mqtt.reconnect_max", ""),
+        ('host = "h"\ntls = true\n', "mqtt.tls", ""),
+    ]:
+        path = os.path.join(WORK, "bad.toml")
+        open(path, "w").write("[mqtt]\n" + body)
+        r = subprocess.run([CANDELA, "--config", path, "--test-pattern", "--check"],
+                           capture_output=True, text=True, timeout=60)
+        check(r.returncode == 2 and key in r.stderr and what in r.stderr and path in r.stderr,
+              "refused: %s" % body.strip().replace("\n", "; "), r.stderr)
+    path = os.path.join(WORK, "good.toml")
+    open(path, "w").write('[mqtt]\nhost = "broker.lan"\nusername = "u"\npassword_file = "p"\n')
+    r = subprocess.run([CANDELA, "--config", path, "--test-pattern", "--check"],
+                       capture_output=True, text=True, timeout=60)
+    check(r.returncode == 0, "a good [mqtt] passes --check", r.stderr)
+    os.chmod(pw, 0o644)
+    r = subprocess.run([CANDELA, "--config", path, "--test-pattern", "--check"],
+                       capture_output=True, text=True, timeout=60)
+    check("can be read by others (mode 644); chmod 600 it" in r.stderr,
+          "a password file others can read is warned about", r.stderr)
+    os.chmod(pw, 0o600)
+    r = subprocess.run([CANDELA, "--config", path, "--test-pattern", "--check"],
+                       capture_output=True, text=True, timeout=60)
+    check("can be read by others" not in r.stderr, "not when it is 0600", r.stderr)
+
+
+try:
+    {"commands": case_commands, "reconnect": case_reconnect, "absent": case_absent,
+     "password": case_password, "off": case_off, "config": case_config,
+     "silent": case_silent}[CASE]()
+finally:
+    for p in procs:
+        if p.poll() is None:
+            p.kill()
+            p.wait()
+    shutil.rmtree(WORK, ignore_errors=True)
+sys.exit(1 if failures else 0)
