@@ -10,14 +10,18 @@ eval_dir=${CANDELA_EVAL_DIR:-$root/../shared/eval}
 flames=${CANDELA_FLAMES_DIR:-$root/../shared/data/flames}
 frames=${FRAMES:-600}
 
+need_tools() {
+  for b in "$candela" "$tool"; do
+    [ -x "$b" ] || { echo "$b: not built (cmake --build build --target candela candela-tool)" >&2; exit 2; }
+  done
+}
+
 need_shared() {
   if [ ! -d "$eval_dir/scenes" ] || [ ! -d "$flames" ]; then
     echo "skipped: the shared eval scenes ($eval_dir/scenes) or clips ($flames) are not here" >&2
     exit 77
   fi
-  for b in "$candela" "$tool"; do
-    [ -x "$b" ] || { echo "$b: not built (cmake --build build --target candela candela-tool)" >&2; exit 2; }
-  done
+  need_tools
 }
 
 # scene_file NAME: a path, or an eval scene by name (a_candle_calm) or letter (a).

@@ -8,20 +8,14 @@
 #   tests/realism/no-repeats.sh SCENE.toml [SEED]
 # Exit: 0 no repeat over 2 s, 1 a longer repeat, 2 the render or measure failed.
 set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
-build=${CANDELA_BUILD_DIR:-$root/build}
-candela=${CANDELA:-$build/firmware/candela}
-tool=${CANDELA_TOOL:-$build/tools/candela-tool/candela-tool}
+. "$(dirname "$0")/common.sh"
 scene=${1:?usage: no-repeats.sh SCENE.toml [SEED]}
 seed=${2:-1}
 minutes=${REPEAT_MINUTES:-10}
 fps=15
 limit_s=2
 frames=$((minutes * 60 * fps))
-for b in "$candela" "$tool"; do
-  [ -x "$b" ] || { echo "$b: not built (cmake --build build --target candela candela-tool)" >&2; exit 2; }
-done
+need_tools
 work=$(mktemp -d "${TMPDIR:-/tmp}/candela-repeats.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 if ! "$candela" --display headless --size 64x36 --fps "$fps" --frames "$frames" --seed "$seed" --mute \
