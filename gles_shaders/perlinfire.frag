@@ -157,6 +157,12 @@ void main() {
       vec4 c = textureLod(u_profile, vec2(r * (1.0 + u_wobble * turb), 1.0 - v), 0.0);
       // Tongues that rise past the profile fade out below the bound's top.
       float density = c.a * (1.0 - smoothstep(u_bound.z - 0.2, u_bound.z, p.y));
+      // Flames rise from between the logs: each slab fades in above the
+      // obstacle over a ragged band, else its cut along the logs' top shows
+      // as one straight bright line per slab (seen from above, a stack of
+      // them outlines the volume's floor).
+      if (u_obstacle > 0.0)
+        density *= smoothstep(u_obstacle, u_obstacle + 0.05, p.y + 0.05 * turb);
       // The gaps only ever thin the density (depth <= 1), so where it is
       // already below the sheets' edge they cannot change this sample: skip
       // their noise there (most of the box: the air between the tongues).

@@ -223,6 +223,40 @@ TEST(SimulateCommand, SlicesMakeOneWiderPictureOfDifferentFires) {
   EXPECT_NE(out.find("--no-fields"), std::string::npos) << out;
 }
 
+// --slice-rates: each slice's clock runs at its own rate. The two slices of a
+// two-slice fire run at 1 -/+ S, so after the same warm-up (the plumes still
+// rising) the fast one's top is higher and the slow one's lower than at 1x.
+TEST(SimulateCommand, SliceRatesRunEachSliceAtItsOwnPace) {
+  auto plume_top = [](const Image& img, int x0, int x1) {  // rows from the bottom
+    for (int y = 0; y < img.height; ++y)
+      for (int x = x0; x < x1; ++x)
+        if (img.at(x, y) > 20) return img.height - y;
+    return 0;
+  };
+  const std::string base = std::string(CANDELA_TOOL_EXE) +
+                           " simulate -q --preset tongues --grid 48x128 --frames 1 --warmup 0.5 "
+                           "--render radiance --exposure 3 --soot 70 --no-fields --slices 2 "
+                           "--slice-spacing 1 --seed 4 --out ";
+  std::string out;
+  const fs::path same = scratch("rates") / "same", spread = scratch("rates") / "spread";
+  ASSERT_EQ(run(base + same.string(), out), 0) << out;
+  ASSERT_EQ(run(base + spread.string() + " --slice-rates 0.5", out), 0) << out;
+  const Image a = read_png(frame_path(same.string(), 0));
+  const Image b = read_png(frame_path(spread.string(), 0));
+  const int a0 = plume_top(a, 0, 48), a1 = plume_top(a, 48, 96);
+  const int b0 = plume_top(b, 0, 48), b1 = plume_top(b, 48, 96);
+  EXPECT_GT(a0, 10) << "no plume at 1x";
+  EXPECT_TRUE((b0 + 4 < a0 && b1 > a1 + 4) || (b0 > a0 + 4 && b1 + 4 < a1))
+      << "plume tops (rows): same rates " << a0 << ", " << a1 << "; spread " << b0 << ", " << b1;
+  const std::string bad = std::string(CANDELA_TOOL_EXE) +
+                          " simulate --render radiance --no-fields --out " +
+                          (scratch("rates") / "bad").string();
+  EXPECT_EQ(run(bad + " --slices 3 --slice-rates 0.7", out), 2);
+  EXPECT_NE(out.find("slice-rates: a spread in 0..0.6"), std::string::npos) << out;
+  EXPECT_EQ(run(bad + " --slice-rates 0.2", out), 2);
+  EXPECT_NE(out.find("slice-rates: applies to --slices 2 or more"), std::string::npos) << out;
+}
+
 TEST(SimulateCommand, BadOptionsFailWithAClearMessage) {
   const std::string exe =
       std::string(CANDELA_TOOL_EXE) + " simulate --out " + (scratch("bad") / "x").string() + " ";

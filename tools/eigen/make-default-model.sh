@@ -67,11 +67,14 @@ for kind in $which; do
     # Five slices of a few tongues each, over a fuel bed; 10 s at 30 fps.
     # Fuel that burns slowly (burn-rate 3) is carried up and burns in pockets
     # that detach; each slice's light flickers on its own (1/f, the small
-    # pockets the 2-D grid cannot resolve); the camera's glow joins tongues
+    # pockets the 2-D grid cannot resolve); each slice's clock runs at its own
+    # rate (0.7-1.3: tongues of many sizes puff at many frequencies, so the
+    # brightness spectrum has no single peak); the camera's glow joins tongues
     # that nearly touch and its haze gives them video's dim envelope.
+    # Scenes play it at speed 1.5 (see eigen-fireplace.toml).
     "$tool" simulate -q --preset tongues --slices 5 --slice-spacing 0.3 --fuel-bed --no-fields \
       --seed 21 --frames 300 --wind 0:0 --substeps 3 --warmup 2 --render radiance \
-      --exposure 10 --knee 0.65 --soot 90 --buoyancy 2.6 --burn-rate 3 --slice-flicker 0.12 \
+      --exposure 10 --knee 0.65 --soot 90 --buoyancy 2.6 --burn-rate 3 --slice-flicker 0.12 --slice-rates 0.3 \
       --glow 0.3 --glow-radius 3 --haze 0.05 --haze-radius 10 --name fire-calm --out fire-calm
     # One clip, no labels, no background level taken off (the simulation's
     # black is black; the haze is the picture). 256 EigenFires at 128x160:

@@ -114,6 +114,11 @@ int run_simulate(int argc, char** argv) {
                  "slices: each slice's light flickers by this depth (0..0.5) with 1/f noise, "
                  "0.75-24 Hz")
       ->capture_default_str();
+  double slice_rates = 0.0;
+  app.add_option("--slice-rates", slice_rates,
+                 "slices: each slice's clock runs at its own rate, spread over 1-S..1+S (0..0.6); "
+                 "tongues of many sizes puff at many frequencies")
+      ->capture_default_str();
   app.add_option(
       "--t-reference", t_reference,
       "temperature shown as full brightness, K (default: hottest cell after the warm-up)");
@@ -177,6 +182,7 @@ int run_simulate(int argc, char** argv) {
     opt.slices = slices;
     opt.slice_spacing = slice_spacing;
     opt.slice_flicker = slice_flicker;
+    opt.slice_rates = slice_rates;
     opt.fuel_bed = fuel_bed;
     opt.t_reference = t_reference;
     opt.write_fields = !no_fields;

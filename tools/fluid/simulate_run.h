@@ -36,6 +36,12 @@ struct SimulateOptions {
   // near-1/f spectra (the real fires' slopes are -0.8..-1.3; the slices alone
   // give -2.3..-2.8).
   double slice_flicker = 0.0;
+  // Each slice's clock runs at its own seeded rate, spread evenly over
+  // 1 - S .. 1 + S (0..0.6): real tongues differ in size, and a smaller
+  // flame puffs faster (frequency ~ 1/sqrt(size)), so a fire's brightness has
+  // no single puffing frequency. Identical slices all puff at one rate and
+  // give the brightness spectrum a peak real fires do not have.
+  double slice_rates = 0.0;
   // Logs and coals around the flames (fuel_bed.h), drawn on the slices' canvas.
   bool fuel_bed = false;
   bool write_fields = true;

@@ -181,7 +181,7 @@ int run_judge(int argc, char** argv) {
       "Also: measure features|stats|compare|repeats ... (measure SUBCOMMAND --help)",
       "candela-tool measure"};
   std::string dir, against, flames = default_flames_dir(), only;
-  double fps = 0;
+  double fps = 0, spectra_margin = 0;
   cm::LoadLimits limits;
   bool as_json = false, no_spectra = false;
   app.add_option("DIR", dir, "folder of PNG frames to judge")->required();
@@ -195,6 +195,11 @@ int run_judge(int argc, char** argv) {
                  "judge only these features (comma-separated; default all: tau_s,sharp,"
                  "spat_slope,iso,parts,area_cv,core)");
   app.add_flag("--no-spectra", no_spectra, "judge the features only, not the I/H/X/W spectra");
+  app.add_option("--spectra-margin", spectra_margin,
+                 "a series is inside within this many dB beyond the real-vs-real spread "
+                 "(default 0: the spread itself)")
+      ->check(CLI::Range(0.0, 40.0))
+      ->capture_default_str();
   add_common(app, limits, as_json);
   if (int rc = parse(app, argc, argv); rc >= 0) return rc;
   const std::vector<std::string> names = split_list(only);
@@ -226,7 +231,7 @@ int run_judge(int argc, char** argv) {
   std::vector<cm::Measured> real;
   for (const auto& r : refs) real.push_back(cm::measure_clip(r.name, r.fps, limits));
   const cm::Measured clip = cm::measure_clip(dir, fps, limits);
-  const cm::Judgement j = cm::judge(real, clip, names, !no_spectra);
+  const cm::Judgement j = cm::judge(real, clip, names, !no_spectra, spectra_margin);
   const bool all = j.inside == j.of;
 
   if (as_json) {
@@ -249,6 +254,7 @@ int run_judge(int argc, char** argv) {
                                     {"std_ratio", r},
                                     {"real_min", num(s.real_min)},
                                     {"real_max", num(s.real_max)},
+                                    {"margin_db", spectra_margin},
                                     {"inside", s.inside}};
       }
     }
@@ -268,7 +274,9 @@ int run_judge(int argc, char** argv) {
                 : f.value > f.real_max ? "outside (above)"
                                        : "outside (undefined)");
   if (!no_spectra) {
-    std::printf("\n  series  real-real lsd (dB)   lsd to each real clip (dB)  verdict\n");
+    std::printf("\n  series  real-real lsd (dB)   lsd to each real clip (dB)  verdict");
+    if (spectra_margin > 0) std::printf(" (within %.1f dB of the spread)", spectra_margin);
+    std::printf("\n");
     for (const auto& s : j.spectra) {
       std::string d;
       char buf[32];

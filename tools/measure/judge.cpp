@@ -21,7 +21,7 @@ Measured measure_clip(const std::string& dir, double fps, const LoadLimits& limi
 }
 
 Judgement judge(const std::vector<Measured>& refs, const Measured& clip,
-                const std::vector<std::string>& names, bool spectra) {
+                const std::vector<std::string>& names, bool spectra, double spectra_margin_db) {
   Judgement j;
   for (const std::string& k : names.empty() ? feature_names() : names) {
     FeatureVerdict v{k, INFINITY, -INFINITY, feature(clip.features, k), false};
@@ -52,9 +52,10 @@ Judgement judge(const std::vector<Measured>& refs, const Measured& clip,
         s.real_min = std::min(s.real_min, c.s[i].lsd_db);
         s.real_max = std::max(s.real_max, c.s[i].lsd_db);
       }
-    // Inside: no further from any real clip than the real clips are from each other.
+    // Inside: no further from any real clip than the real clips are from each
+    // other (plus the margin asked for).
     s.inside = refs.size() >= 2 && !s.lsd_to_ref.empty();
-    for (double d : s.lsd_to_ref) s.inside = s.inside && d <= s.real_max;
+    for (double d : s.lsd_to_ref) s.inside = s.inside && d <= s.real_max + spectra_margin_db;
     j.spectra.push_back(s);
     j.inside += s.inside;
     ++j.of;

@@ -155,8 +155,12 @@ struct Judgement {
   int inside = 0, of = 0;                // over what was asked
 };
 // `names`: features to judge (empty = all); `spectra`: also the I/H/X/W distances.
+// A series is inside when no real clip is further than the real clips are from
+// each other, plus `spectra_margin_db` (0: the real-real spread itself; a
+// margin lets a test hold progress towards the spread).
 Judgement judge(const std::vector<Measured>& refs, const Measured& clip,
-                const std::vector<std::string>& names, bool spectra);
+                const std::vector<std::string>& names, bool spectra,
+                double spectra_margin_db = 0.0);
 
 // The shared real clips of a kind: "candle" or "fire" (real speed). Empty if
 // the kind is unknown. fps from the clips' table in ../shared/eval/README.md.
