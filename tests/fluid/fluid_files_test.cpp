@@ -257,6 +257,57 @@ TEST(SimulateCommand, SliceRatesRunEachSliceAtItsOwnPace) {
   EXPECT_NE(out.find("slice-rates: applies to --slices 2 or more"), std::string::npos) << out;
 }
 
+// --shutter: a short shutter shows the last substep alone (crisp); the whole
+// frame's shutter averages the substeps (moving edges blur). --slice-edge-fade:
+// each grid's light fades to nothing at its sides (a dim exposure, so the
+// soft clip does not hide the change).
+TEST(SimulateCommand, ShutterAndSliceEdgeFadeShapeTheLight) {
+  const std::string base = std::string(CANDELA_TOOL_EXE) +
+                           " simulate -q --preset tongues --grid 48x128 --frames 1 --warmup 0.8 "
+                           "--render radiance --exposure 0.4 --soot 70 --no-fields --slices 2 "
+                           "--slice-spacing 1 --seed 4 --substeps 4 --out ";
+  std::string out;
+  const fs::path d = scratch("shutter");
+  ASSERT_EQ(run(base + (d / "long").string(), out), 0) << out;
+  ASSERT_EQ(run(base + (d / "short").string() + " --shutter 0.25", out), 0) << out;
+  ASSERT_EQ(run(base + (d / "fade").string() + " --slice-edge-fade 0.25", out), 0) << out;
+  const Image lng = read_png(frame_path((d / "long").string(), 0));
+  const Image sht = read_png(frame_path((d / "short").string(), 0));
+  const Image fad = read_png(frame_path((d / "fade").string(), 0));
+  auto mean_gradient = [](const Image& img) {
+    double s = 0;
+    for (int y = 1; y < img.height; ++y)
+      for (int x = 1; x < img.width; ++x)
+        s += std::abs(img.at(x, y) - img.at(x - 1, y)) + std::abs(img.at(x, y) - img.at(x, y - 1));
+    return s / (img.width * img.height);
+  };
+  EXPECT_GT(mean_gradient(sht), 1.05 * mean_gradient(lng)) << "a short shutter is crisper";
+  // The same simulation drawn twice: per canvas column, faded light over
+  // unfaded light is the fade's window there: ~1 mid-grid, near 0 by a side.
+  auto column = [](const Image& img, int x) {
+    double s = 0;
+    for (int y = 0; y < img.height; ++y) s += img.at(x, y);
+    return s;
+  };
+  int brightest = 0;
+  double lowest_ratio = 1.0;
+  for (int x = 0; x < lng.width; ++x) {
+    if (column(lng, x) > column(lng, brightest)) brightest = x;
+    if (column(lng, x) > 200.0)
+      lowest_ratio = std::min(lowest_ratio, column(fad, x) / column(lng, x));
+  }
+  EXPECT_GT(column(fad, brightest) / column(lng, brightest), 0.9) << "the flames' middle is kept";
+  EXPECT_LT(lowest_ratio, 0.6)
+      << "lit columns by a grid's side fade out (sRGB: 0.6 is ~0.3 of the light)";
+  const std::string bad = std::string(CANDELA_TOOL_EXE) +
+                          " simulate --render radiance --no-fields --slices 2 --out " +
+                          (d / "bad").string();
+  EXPECT_EQ(run(bad + " --shutter 0", out), 2);
+  EXPECT_NE(out.find("shutter: a share of the frame in (0, 1]"), std::string::npos) << out;
+  EXPECT_EQ(run(bad + " --slice-edge-fade 0.3", out), 2);
+  EXPECT_NE(out.find("slice-edge-fade: a share of the grid in 0..0.25"), std::string::npos) << out;
+}
+
 TEST(SimulateCommand, BadOptionsFailWithAClearMessage) {
   const std::string exe =
       std::string(CANDELA_TOOL_EXE) + " simulate --out " + (scratch("bad") / "x").string() + " ";

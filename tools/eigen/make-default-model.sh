@@ -69,13 +69,17 @@ for kind in $which; do
     # that detach; each slice's light flickers on its own (1/f, the small
     # pockets the 2-D grid cannot resolve); each slice's clock runs at its own
     # rate (0.7-1.3: tongues of many sizes puff at many frequencies, so the
-    # brightness spectrum has no single peak); the camera's glow joins tongues
-    # that nearly touch and its haze gives them video's dim envelope.
-    # Scenes play it at speed 1.5 (see eigen-fireplace.toml).
+    # brightness spectrum has no single peak); each slice's light fades out at
+    # its grid's sides and (where inside the canvas) top, so no tongue ends on
+    # a straight line; the shutter is open for the last of the three substeps
+    # only (averaging all three showed fast tongues as three stacked copies);
+    # the camera's glow joins tongues that nearly touch and its haze gives
+    # them video's dim envelope. Scenes play it at speed 1.4 (see
+    # eigen-fireplace.toml).
     "$tool" simulate -q --preset tongues --slices 5 --slice-spacing 0.3 --fuel-bed --no-fields \
       --seed 21 --frames 300 --wind 0:0 --substeps 3 --warmup 2 --render radiance \
       --exposure 10 --knee 0.65 --soot 90 --buoyancy 2.6 --burn-rate 3 --slice-flicker 0.12 --slice-rates 0.3 \
-      --glow 0.3 --glow-radius 3 --haze 0.05 --haze-radius 10 --name fire-calm --out fire-calm
+      --slice-edge-fade 0.08 --shutter 0.34 --glow 0.3 --glow-radius 4 --haze 0.05 --haze-radius 10 --name fire-calm --out fire-calm
     # One clip, no labels, no background level taken off (the simulation's
     # black is black; the haze is the picture). 256 EigenFires at 128x160:
     # five independent fires are hard to compress (PSNR 24 dB at 128, 33.6 dB

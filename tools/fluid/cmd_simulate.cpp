@@ -119,6 +119,16 @@ int run_simulate(int argc, char** argv) {
                  "slices: each slice's clock runs at its own rate, spread over 1-S..1+S (0..0.6); "
                  "tongues of many sizes puff at many frequencies")
       ->capture_default_str();
+  double slice_edge_fade = 0.0;
+  app.add_option("--slice-edge-fade", slice_edge_fade,
+                 "slices: each slice's light fades out over this share of its grid at the sides "
+                 "(twice that below a top inside the canvas), 0..0.25")
+      ->capture_default_str();
+  double shutter = 1.0;
+  app.add_option("--shutter", shutter,
+                 "slices: share of each frame the shutter is open (its last substeps' light is "
+                 "averaged), 0..1; 1 = the whole frame")
+      ->capture_default_str();
   app.add_option(
       "--t-reference", t_reference,
       "temperature shown as full brightness, K (default: hottest cell after the warm-up)");
@@ -183,6 +193,8 @@ int run_simulate(int argc, char** argv) {
     opt.slice_spacing = slice_spacing;
     opt.slice_flicker = slice_flicker;
     opt.slice_rates = slice_rates;
+    opt.slice_edge_fade = slice_edge_fade;
+    opt.shutter = shutter;
     opt.fuel_bed = fuel_bed;
     opt.t_reference = t_reference;
     opt.write_fields = !no_fields;

@@ -116,17 +116,29 @@ void add_radiance(const Grid2& t, const Grid2* fuel, const RadianceTable& table,
   const int x1 = std::min(canvas_width, static_cast<int>(std::ceil(at.left + t.width * at.scale)));
   const int y1 = std::min(canvas_height, static_cast<int>(std::ceil(canvas_height - at.bottom)));
   const int y0 = std::max(0, static_cast<int>(std::floor(y1 - t.height * at.scale)));
+  // The fades (smooth, so no new edge): per column once, per row below.
+  auto fade = [](double d, double band) {  // d: cells from the edge
+    if (band <= 0.0) return 1.0;
+    const double u = std::clamp(d / band, 0.0, 1.0);
+    return u * u * (3.0 - 2.0 * u);
+  };
+  std::vector<double> window_x(static_cast<size_t>(std::max(0, x1 - x0)), 1.0);
+  for (int x = x0; x < x1; ++x) {
+    const double gx = (x + 0.5 - at.left) / at.scale - 0.5;
+    window_x[x - x0] = fade(std::min(gx + 0.5, t.width - 0.5 - gx), at.fade_sides * t.width);
+  }
   for (int y = y0; y < y1; ++y) {
     float* row = canvas.data() + static_cast<size_t>(y) * canvas_width;
     const double gy = (canvas_height - 1 - y - at.bottom + 0.5) / at.scale - 0.5;
     if (gy < -0.5 || gy > t.height - 0.5) continue;
+    const double window_y = fade(t.height - 0.5 - gy, at.fade_top * t.height);
     for (int x = x0; x < x1; ++x) {
       double gx = (x + 0.5 - at.left) / at.scale - 0.5;
       if (at.mirror) gx = t.width - 1 - gx;
       if (gx < -0.5 || gx > t.width - 0.5) continue;
       double e = cam.exposure * table.at(t.sample(gx, gy));
       if (soot) e *= 1.0 - std::exp(-std::max(0.0, fuel->sample(gx, gy)) / cam.soot);
-      row[x] += static_cast<float>(e * at.gain);
+      row[x] += static_cast<float>(e * at.gain * window_x[x - x0] * window_y);
     }
   }
 }

@@ -71,6 +71,10 @@ struct SlicePlacement {
   double scale = 1.0;   // canvas pixels per cell
   double gain = 1.0;
   bool mirror = false;
+  // Light fades to nothing over these shares of the grid at its top and at
+  // its sides: gas that leaves a slice's grid inside the canvas would else
+  // end along the grid's straight edge.
+  double fade_top = 0.0, fade_sides = 0.0;
 };
 // Adds a slice's linear, exposed luminance (exposure * Y(T)/Y(T_ref) times
 // the soot emissivity, as render_radiance computes it before the soft clip)

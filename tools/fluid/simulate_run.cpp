@@ -195,6 +195,10 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
     throw std::invalid_argument("slice-rates: a spread in 0..0.6");
   if (opt.slice_rates > 0.0 && opt.slices < 2)
     throw std::invalid_argument("slice-rates: applies to --slices 2 or more");
+  if (!(opt.slice_edge_fade >= 0.0) || !(opt.slice_edge_fade <= 0.25))
+    throw std::invalid_argument("slice-edge-fade: a share of the grid in 0..0.25");
+  if (!(opt.shutter > 0.0) || !(opt.shutter <= 1.0))
+    throw std::invalid_argument("shutter: a share of the frame in (0, 1]");
   if (opt.fuel_bed && opt.slices < 2)
     throw std::invalid_argument("fuel-bed: drawn on the canvas of --slices 2 or more");
   if (opt.slices > 1 && opt.write_fields)
@@ -274,6 +278,12 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
       const double jitter = (rng.unit_double() - 0.5) * 0.3 * opt.slice_spacing * slice_w;
       const double centre = slice_w * (0.5 + k * opt.slice_spacing) + jitter;
       at.left = centre - 0.5 * params.width * at.scale;
+      // A grid whose top lies inside the canvas (the smaller slices farther
+      // back) fades out below its top; every grid fades at its sides, where
+      // slices overlap.
+      at.fade_sides = opt.slice_edge_fade;
+      if (at.bottom + params.height * at.scale < canvas_h - 1.0)
+        at.fade_top = 2.0 * opt.slice_edge_fade;
     }
   }
   std::vector<float> canvas;
@@ -292,9 +302,12 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
       // substeps' light, so fast tongues blur along their motion as on video.
       canvas.assign(static_cast<size_t>(canvas_w) * canvas_h, 0.0f);
       Camera cam = opt.camera;
-      cam.exposure /= opt.substeps;
+      const int open_substeps =
+          std::clamp(static_cast<int>(std::lround(opt.shutter * opt.substeps)), 1, opt.substeps);
+      cam.exposure /= open_substeps;
       for (int sub = 0; sub < opt.substeps; ++sub) {
         one_step();
+        if (sub < opt.substeps - open_substeps) continue;  // the shutter is still closed
         const double t = opt.warmup + (f + (sub + 0.5) / opt.substeps) / opt.fps;
         for (int k = 0; k < opt.slices; ++k) {
           SlicePlacement at = placement[k];

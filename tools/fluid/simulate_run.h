@@ -42,6 +42,15 @@ struct SimulateOptions {
   // no single puffing frequency. Identical slices all puff at one rate and
   // give the brightness spectrum a peak real fires do not have.
   double slice_rates = 0.0;
+  // Each slice's light fades out over this share of its grid at the sides
+  // (and twice that below its top where the top is inside the canvas), so
+  // gas leaving a grid does not end along a straight line.
+  double slice_edge_fade = 0.0;
+  // Slices: the share of each frame the shutter is open (the last substeps'
+  // light is averaged). Each substep is one sharp picture, so a long shutter
+  // over few substeps shows a fast tongue as a few stacked copies; a short
+  // one shows it crisp.
+  double shutter = 1.0;
   // Logs and coals around the flames (fuel_bed.h), drawn on the slices' canvas.
   bool fuel_bed = false;
   bool write_fields = true;
