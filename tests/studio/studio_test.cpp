@@ -1,0 +1,233 @@
+// candela-tool studio under Xvfb (ctest runs this program inside xvfb-run),
+// driven by --script: the studio's flame answers a weight edit as
+// render-weights does, the PCA view rotates without touching the flame, "save
+// as scene" writes what candela --check accepts with the edited values, and a
+// broken model shows its error in the window.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kFire = std::string(CANDELA_SOURCE_DIR) + "/firmware/models/fire.cmodel";
+
+std::string work(const std::string& name) {
+  fs::create_directories(STUDIO_WORK_DIR);
+  return std::string(STUDIO_WORK_DIR) + "/" + name;
+}
+
+int run(const std::string& cmd) {
+  const int rc = std::system((cmd + " > " + work("last.log") + " 2>&1").c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+std::string log_text() {
+  std::ifstream in(work("last.log"));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Runs the studio with these script lines; returns its exit status.
+int studio(const std::string& model, const std::string& name, const std::string& lines) {
+  const std::string script = work(name + ".script");
+  std::ofstream(script) << lines;
+  return run(std::string(CANDELA_TOOL) + " studio " + model + " --size 1280x720 --script " +
+             script);
+}
+
+std::map<std::string, std::string> read_dump(const std::string& path) {
+  std::map<std::string, std::string> d;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) {
+    const size_t eq = line.find(" = ");
+    if (eq != std::string::npos) d[line.substr(0, eq)] = line.substr(eq + 3);
+  }
+  return d;
+}
+
+std::vector<double> numbers(const std::string& s) {
+  std::vector<double> v;
+  std::istringstream in(s);
+  for (double x; in >> x;) v.push_back(x);
+  return v;
+}
+
+double luma(const candela::Image& img, int x, int y) {
+  return 0.2126 * img.at(x, y, 0) + 0.7152 * img.at(x, y, 1) + 0.0722 * img.at(x, y, 2);
+}
+
+// The window's pixels inside `rect` (x y w h) averaged down to w x h luma.
+std::vector<double> region(const candela::Image& img, const std::vector<double>& rect, int w,
+                           int h) {
+  std::vector<double> out(static_cast<size_t>(w) * h, 0.0);
+  const double sx = rect[2] / w, sy = rect[3] / h;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const int x0 = static_cast<int>(rect[0] + i * sx),
+                x1 = static_cast<int>(rect[0] + (i + 1) * sx);
+      const int y0 = static_cast<int>(rect[1] + j * sy),
+                y1 = static_cast<int>(rect[1] + (j + 1) * sy);
+      double s = 0;
+      int n = 0;
+      for (int y = y0; y < std::max(y1, y0 + 1); ++y)
+        for (int x = x0; x < std::max(x1, x0 + 1); ++x) s += luma(img, x, y), ++n;
+      out[static_cast<size_t>(j) * w + i] = s / n;
+    }
+  return out;
+}
+
+std::vector<double> whole(const candela::Image& img) {
+  return region(img, {0, 0, static_cast<double>(img.width), static_cast<double>(img.height)},
+                img.width, img.height);
+}
+
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  double ma = 0, mb = 0;
+  for (size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
+  ma /= a.size(), mb /= b.size();
+  double sab = 0, saa = 0, sbb = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    sab += (a[i] - ma) * (b[i] - mb), saa += (a[i] - ma) * (a[i] - ma),
+        sbb += (b[i] - mb) * (b[i] - mb);
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0;
+}
+
+std::vector<double> minus(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> d(a.size());
+  for (size_t i = 0; i < a.size(); ++i) d[i] = a[i] - b[i];
+  return d;
+}
+
+double mean_abs(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += std::abs(x);
+  return s / v.size();
+}
+
+TEST(Studio, AWeightEditChangesTheFlameAsRenderWeightsDoes) {
+  ASSERT_EQ(studio(kFire, "weight",
+                   "pause\nframe 40\nwait 2\ndump " + work("w0.txt") + "\nscreenshot " +
+                       work("w0.png") + "\nset weight 3 +2.0\nwait 2\ndump " + work("w1.txt") +
+                       "\nscreenshot " + work("w1.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d0 = read_dump(work("w0.txt")), d1 = read_dump(work("w1.txt"));
+  ASSERT_EQ(d1.at("ok"), "1");
+  EXPECT_EQ(d1.at("model_frame"), "40");
+  const auto base = numbers(d1.at("base")), shown = numbers(d1.at("shown"));
+  ASSERT_GT(shown.size(), 3u);
+  EXPECT_GT(shown[3] - base[3], 0) << "a +2 sigma offset raises weight 3";
+  EXPECT_EQ(numbers(d0.at("shown"))[3], base[3]) << "before the edit the frame's own weight";
+  for (size_t k = 0; k < shown.size(); ++k)
+    if (k != 3) {
+      EXPECT_EQ(shown[k], base[k]) << "weight " << k << " untouched";
+    }
+
+  // The same edit through render-weights (the CPU reconstruction and colour).
+  char set[64];
+  std::snprintf(set, sizeof set, "3=%.9g", shown[3]);
+  const std::string rw = std::string(CANDELA_TOOL) + " render-weights " + kFire + " --frame 40";
+  ASSERT_EQ(run(rw + " --out " + work("r0.png")), 0) << log_text();
+  ASSERT_EQ(run(rw + " --set " + set + " --out " + work("r1.png")), 0) << log_text();
+  const auto r0 = candela::read_png(work("r0.png"), 3), r1 = candela::read_png(work("r1.png"), 3);
+  const auto s0 = candela::read_png(work("w0.png"), 3), s1 = candela::read_png(work("w1.png"), 3);
+  const auto rect = numbers(d1.at("flame_image"));
+  ASSERT_EQ(rect.size(), 4u);
+  const auto ds =
+      minus(region(s1, rect, r0.width, r0.height), region(s0, rect, r0.width, r0.height));
+  const auto dr = minus(whole(r1), whole(r0));
+  const double c = correlation(ds, dr), ratio = mean_abs(ds) / mean_abs(dr);
+  std::printf(
+      "weight 3 +2 sigma: studio change %.2f, render-weights %.2f (ratio %.2f), correlation %.3f\n",
+      mean_abs(ds), mean_abs(dr), ratio, c);
+  EXPECT_GT(mean_abs(dr), 1.0) << "the edit is visible in render-weights";
+  EXPECT_GT(c, 0.8) << "the flame changes where and as render-weights' does";
+  EXPECT_GT(ratio, 0.6);
+  EXPECT_LT(ratio, 1.6);
+}
+
+TEST(Studio, RotatingThePcaViewChangesItAndNotTheFlame) {
+  ASSERT_EQ(studio(kFire, "rotate",
+                   "pause\nframe 10\nwait 2\ndump " + work("p0.txt") + "\nscreenshot " +
+                       work("p0.png") + "\ndrag pca 120 0\nwait 2\ndump " + work("p1.txt") +
+                       "\nscreenshot " + work("p1.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d0 = read_dump(work("p0.txt")), d1 = read_dump(work("p1.txt"));
+  EXPECT_NEAR(std::stod(d1.at("pca_yaw")) - std::stod(d0.at("pca_yaw")), 1.2, 1e-4);
+  const auto a = candela::read_png(work("p0.png"), 3), b = candela::read_png(work("p1.png"), 3);
+  const auto pca = numbers(d1.at("pca")), flame = numbers(d1.at("flame_view"));
+  const int pw = static_cast<int>(pca[2]), ph = static_cast<int>(pca[3]);
+  const double pca_change = mean_abs(minus(region(b, pca, pw, ph), region(a, pca, pw, ph)));
+  const int fw = static_cast<int>(flame[2]), fh = static_cast<int>(flame[3]);
+  const double flame_change = mean_abs(minus(region(b, flame, fw, fh), region(a, flame, fw, fh)));
+  std::printf("PCA view change %.3f, flame change %.3f (mean |luma| difference)\n", pca_change,
+              flame_change);
+  EXPECT_GT(pca_change, 0.3) << "the tracks moved";
+  EXPECT_LT(flame_change, 0.01) << "the flame did not";
+}
+
+TEST(Studio, SaveAsSceneWritesACheckedSceneWithTheEdits) {
+  const std::string scene = work("edited.toml");
+  fs::remove(scene);
+  ASSERT_EQ(studio(kFire, "save",
+                   "set hue 200\nset saturation 0.5\nset brightness 1.25\nset glow_radius 0.2\n"
+                   "set glow_strength 0.75\nspeed 1.5\nsave-scene " +
+                       scene + "\ndump " + work("s.txt") + "\nquit\n"),
+            0)
+      << log_text();
+  EXPECT_EQ(read_dump(work("s.txt")).at("status"), "saved " + scene);
+  ASSERT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + scene), 0) << log_text();
+  std::ifstream in(scene);
+  std::map<std::string, std::string> keys;
+  for (std::string line; std::getline(in, line);) {
+    const size_t eq = line.find(" = ");
+    if (eq != std::string::npos && line[0] != '#') keys[line.substr(0, eq)] = line.substr(eq + 3);
+  }
+  EXPECT_EQ(keys["kind"], "\"eigenflame\"");
+  EXPECT_EQ(keys["model"], "\"" + fs::absolute(kFire).lexically_normal().string() + "\"");
+  EXPECT_DOUBLE_EQ(std::stod(keys["hue"]), 200);
+  EXPECT_DOUBLE_EQ(std::stod(keys["saturation"]), 0.5);
+  EXPECT_DOUBLE_EQ(std::stod(keys["brightness"]), 1.25);
+  EXPECT_DOUBLE_EQ(std::stod(keys["glow_radius"]), 0.2);
+  EXPECT_DOUBLE_EQ(std::stod(keys["glow_strength"]), 0.75);
+  EXPECT_DOUBLE_EQ(std::stod(keys["speed"]), 1.5);
+}
+
+TEST(Studio, ABrokenModelShowsItsErrorInTheWindow) {
+  const std::string broken = work("truncated.cmodel");
+  {
+    std::ifstream in(kFire, std::ios::binary);
+    std::vector<char> bytes(4096);
+    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    std::ofstream(broken, std::ios::binary).write(bytes.data(), in.gcount());
+  }
+  ASSERT_EQ(studio(broken, "broken",
+                   "wait 2\ndump " + work("e.txt") + "\nscreenshot " + work("e.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d = read_dump(work("e.txt"));
+  EXPECT_EQ(d.at("ok"), "0");
+  EXPECT_NE(d.at("error").find(broken), std::string::npos) << d.at("error");
+  EXPECT_GT(d.at("error").size(), broken.size() + 10) << "and says what is wrong";
+  // The window shows it: the controls' corner holds text (light pixels on the dark panel).
+  const auto img = candela::read_png(work("e.png"), 3);
+  int light = 0;
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 300; ++x) light += luma(img, x, y) > 150;
+  EXPECT_GT(light, 200);
+}
+
+}  // namespace

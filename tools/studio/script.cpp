@@ -1,0 +1,154 @@
+#include "script.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "panels.h"
+#include "pca_view.h"
+#include "session.h"
+
+namespace candela::studio {
+namespace {
+
+bool number(const std::string& s, double& out) {
+  if (s.empty()) return false;
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return end && *end == '\0';
+}
+
+// Arity and number checks, so a typo fails at load, not halfway.
+std::string check(const std::vector<std::string>& w) {
+  const std::string& c = w[0];
+  auto nums = [&](size_t from, size_t count) -> std::string {
+    if (w.size() != from + count)
+      return "expected " + std::to_string(from + count - 1) + " argument(s) after '" + c + "'";
+    for (size_t i = from; i < w.size(); ++i) {
+      double v;
+      if (!number(w[i], v)) return "expected a number, got '" + w[i] + "'";
+    }
+    return {};
+  };
+  if (c == "pause" || c == "play" || c == "reset" || c == "undo" || c == "quit")
+    return w.size() == 1 ? "" : "'" + c + "' takes no arguments";
+  if (c == "wait" || c == "frame" || c == "speed") return nums(1, 1);
+  if (c == "step") return w.size() == 1 ? "" : nums(1, 1);
+  if (c == "set") {
+    if (w.size() >= 2 && w[1] == "weight") return nums(2, 2);
+    static const char* keys[] = {"detail",     "hue",         "saturation",
+                                 "brightness", "glow_radius", "glow_strength"};
+    for (const char* k : keys)
+      if (w.size() >= 2 && w[1] == k) return nums(2, 1);
+    return "expected set weight|detail|hue|saturation|brightness|glow_radius|glow_strength";
+  }
+  if (c == "drag" || c == "click") {
+    if (w.size() < 2 || w[1] != "pca") return "expected '" + c + " pca X Y'";
+    return nums(2, 2);
+  }
+  if (c == "zoom") {
+    if (w.size() < 2 || w[1] != "pca") return "expected 'zoom pca STEPS'";
+    return nums(2, 1);
+  }
+  if (c == "screenshot" || c == "dump" || c == "save-scene")
+    return w.size() == 2 ? "" : "expected '" + c + " FILE'";
+  return "unknown command '" + c + "'";
+}
+
+float f(const std::string& s) { return std::strtof(s.c_str(), nullptr); }
+
+}  // namespace
+
+Script Script::load(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw RuntimeError(path + ": cannot read the script");
+  Script s;
+  s.file_ = path;
+  std::string text;
+  for (int n = 1; std::getline(in, text); ++n) {
+    const size_t hash = text.find('#');
+    if (hash != std::string::npos) text.resize(hash);
+    std::istringstream words(text);
+    ScriptCommand c;
+    c.line = n;
+    for (std::string w; words >> w;) c.words.push_back(w);
+    if (c.words.empty()) continue;
+    const std::string why = check(c.words);
+    if (!why.empty()) throw RuntimeError(path + ":" + std::to_string(n) + ": " + why);
+    s.commands_.push_back(std::move(c));
+  }
+  return s;
+}
+
+ScriptFrame Script::run_frame(Session& s, PcaView& pca) {
+  ScriptFrame out;
+  if (wait_ > 0) {
+    --wait_;
+    return out;
+  }
+  while (at_ < commands_.size()) {
+    const ScriptCommand& c = commands_[at_++];
+    const auto& w = c.words;
+    const std::string& cmd = w[0];
+    if (cmd == "wait") {
+      wait_ = std::max(0, static_cast<int>(f(w[1])) - 1);
+      if (static_cast<int>(f(w[1])) > 0) break;
+    } else if (cmd == "pause") {
+      s.playing = false;
+    } else if (cmd == "play") {
+      s.playing = true;
+    } else if (cmd == "step") {
+      s.step(w.size() > 1 ? static_cast<int>(f(w[1])) : 1);
+    } else if (cmd == "frame") {
+      s.seek(static_cast<int>(f(w[1])));
+    } else if (cmd == "speed") {
+      s.speed = f(w[1]);
+    } else if (cmd == "set") {
+      s.begin_edit();
+      if (w[1] == "weight") {
+        s.set_offset(static_cast<int>(f(w[2])), f(w[3]));
+      } else if (w[1] == "detail") {
+        s.set_detail_scale(f(w[2]));
+      } else {
+        Look l = s.edits().look;
+        const float v = f(w[2]);
+        if (w[1] == "hue") l.hue = v;
+        if (w[1] == "saturation") l.saturation = v;
+        if (w[1] == "brightness") l.brightness = v;
+        if (w[1] == "glow_radius") l.glow_radius = v;
+        if (w[1] == "glow_strength") l.glow_strength = v;
+        s.set_look(l);
+      }
+    } else if (cmd == "reset") {
+      s.reset_edits();
+    } else if (cmd == "undo") {
+      s.undo();
+    } else if (cmd == "drag") {
+      pca.rotate(f(w[2]), f(w[3]));
+    } else if (cmd == "zoom") {
+      pca.zoom(f(w[2]));
+    } else if (cmd == "click") {
+      const int mf = pca.pick(ImVec2(f(w[2]), f(w[3])));
+      if (mf >= 0) {
+        s.seek_model_frame(mf);
+        s.playing = false;
+      }
+    } else if (cmd == "screenshot") {  // of this frame: later commands wait for the next one
+      out.screenshots.push_back(w[1]);
+      break;
+    } else if (cmd == "dump") {
+      out.dumps.push_back(w[1]);
+      break;
+    } else if (cmd == "save-scene") {
+      if (!save_scene_reporting(s, w[1]))
+        throw RuntimeError(file_ + ":" + std::to_string(c.line) + ": save-scene: " + s.status);
+    } else if (cmd == "quit") {
+      out.quit = true;
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace candela::studio

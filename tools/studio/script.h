@@ -1,0 +1,57 @@
+// Scripted input (--script FILE): one command a line, run at the start of a
+// frame through the same Session / PcaView calls the widgets make, so tests
+// drive the studio as a user does. '#' starts a comment.
+//
+//   wait N                    let N frames pass
+//   pause | play | step [N] | frame N | speed X
+//   set weight K SIGMAS       offset of weight K (0-based), standard deviations
+//   set detail SCALE          scale of the detail weights (K >= 50)
+//   set hue|saturation|brightness|glow_radius|glow_strength V
+//   reset | undo              reset the weight edits / undo the last edit
+//   drag pca DX DY            rotate the PCA view as a mouse drag of DX, DY pixels
+//   zoom pca STEPS            as the mouse wheel
+//   click pca X Y             click at X, Y pixels from the view's top left (jump there)
+//   screenshot FILE.png       the whole window, once this frame is drawn (the
+//                             commands after it run in the next frame)
+//   dump FILE                 the UI state as "key = value" lines, as screenshot
+//   save-scene FILE.toml      as the "Save scene" button
+//   quit
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace candela::studio {
+
+class Session;
+class PcaView;
+
+struct ScriptCommand {
+  int line = 0;
+  std::vector<std::string> words;
+};
+
+// What a frame's commands ask of the frame loop.
+struct ScriptFrame {
+  std::vector<std::string> screenshots, dumps;
+  bool quit = false;
+};
+
+class Script {
+ public:
+  // Reads and checks every line; throws RuntimeError "FILE:LINE: ..." .
+  static Script load(const std::string& path);
+  bool empty() const { return commands_.empty(); }
+  bool done() const { return at_ >= commands_.size() && wait_ == 0; }
+  // Runs the commands due this frame (up to the next wait). Throws
+  // RuntimeError "FILE:LINE: ..." for a command that fails (save-scene).
+  ScriptFrame run_frame(Session& session, PcaView& pca);
+
+ private:
+  std::string file_;
+  std::vector<ScriptCommand> commands_;
+  size_t at_ = 0;
+  int wait_ = 0;
+};
+
+}  // namespace candela::studio

@@ -1,0 +1,32 @@
+// Dear ImGui's platform side on X11 (ImGui ships none): X events from the
+// window backend (DisplayEvents::on_x11_event) -> ImGuiIO: mouse position,
+// buttons and wheel, keys and modifiers, typed text, focus; plus the display
+// size and the time step at each new frame.
+#pragma once
+
+#include <chrono>
+
+union _XEvent;
+
+namespace candela::studio {
+
+// io.KeysDown[] index of a letter key a..z (for shortcuts ImGuiKey_ lacks,
+// e.g. ImGui::IsKeyPressed(letter_key('q')) with io.KeyCtrl).
+constexpr int letter_key(char c) { return 256 + (c - 'a'); }
+
+class X11Platform {
+ public:
+  X11Platform();  // after ImGui::CreateContext(): fills io.KeyMap
+  // Feeds one event into ImGuiIO; true when it was input ImGui takes.
+  bool handle(const _XEvent& event);
+  // Before ImGui::NewFrame(): display size (the window's, in pixels) and
+  // the time since the last frame (a fixed step when `fixed_dt` > 0, for
+  // reproducible scripted runs).
+  void new_frame(int width, int height, double fixed_dt = 0);
+
+ private:
+  std::chrono::steady_clock::time_point last_;
+  bool first_ = true;
+};
+
+}  // namespace candela::studio
