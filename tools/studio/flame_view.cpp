@@ -47,6 +47,14 @@ void FlameView::render(std::span<const float> weights, const Look& look, int w, 
   const model::FlameModel& m = *model_.model;
   w = std::max(w, 16);
   h = std::max(h, 16);
+  // Nothing changed (paused, or a model frame held between two UI frames):
+  // the texture already shows it.
+  const size_t n = std::min(weights.size(), weights_.size());
+  const bool same_weights =
+      std::equal(weights.begin(), weights.begin() + static_cast<ptrdiff_t>(n), weights_.begin()) &&
+      std::all_of(weights_.begin() + static_cast<ptrdiff_t>(n), weights_.end(),
+                  [](float v) { return v == 0; });
+  if (renderer_ && have_look_ && look == look_ && w == w_ && h == h_ && same_weights) return;
   if (!renderer_ || !have_look_ || !(look == look_)) {
     FlameLookSettings s;
     s.ramp = hls_ramp(look.hue, look.saturation, m.colour.black_level);
@@ -76,7 +84,6 @@ void FlameView::render(std::span<const float> weights, const Look& look, int w, 
     w_ = w;
     h_ = h;
   }
-  const size_t n = std::min(weights.size(), weights_.size());
   std::copy_n(weights.begin(), n, weights_.begin());
   std::fill(weights_.begin() + static_cast<ptrdiff_t>(n), weights_.end(), 0.0f);
 
