@@ -230,4 +230,86 @@ TEST(Studio, ABrokenModelShowsItsErrorInTheWindow) {
   EXPECT_GT(light, 200);
 }
 
+TEST(Studio, ClickingATrackJumpsToThatFrame) {
+  ASSERT_EQ(studio(kFire, "click",
+                   "pause\nframe 50\nwait 2\ndump " + work("c0.txt") +
+                       "\nframe 200\nwait 2\ndump " + work("c1.txt") + "\n"),
+            0)
+      << log_text();
+  const auto at50 = numbers(read_dump(work("c0.txt")).at("pca_marker"));
+  ASSERT_EQ(read_dump(work("c1.txt")).at("model_frame"), "200");
+  // Click where frame 50 was drawn (a tiny offset: a user is never exact).
+  char click[96];
+  std::snprintf(click, sizeof click, "click pca %.1f %.1f\n", at50[0] + 0.6, at50[1] - 0.4);
+  ASSERT_EQ(studio(kFire, "click2",
+                   "pause\nframe 200\nwait 2\n" + std::string(click) + "wait 2\ndump " +
+                       work("c2.txt") + "\n"),
+            0)
+      << log_text();
+  const auto d = read_dump(work("c2.txt"));
+  EXPECT_EQ(d.at("playing"), "0") << "a click pauses on the frame";
+  const auto now = numbers(d.at("pca_marker"));
+  // Frame 50, or a frame drawn on the very same spot.
+  EXPECT_LT(std::hypot(now[0] - at50[0], now[1] - at50[1]), 1.5)
+      << "jumped to frame " << d.at("model_frame");
+  EXPECT_NE(d.at("model_frame"), "200");
+}
+
+TEST(Studio, UndoTakesBackEditsOneAtATime) {
+  ASSERT_EQ(studio(kFire, "undo",
+                   "pause\nset weight 2 1.5\nset hue 100\nwait 1\ndump " + work("u0.txt") +
+                       "\nundo\nwait 1\ndump " + work("u1.txt") + "\nundo\nwait 1\ndump " +
+                       work("u2.txt") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto u0 = read_dump(work("u0.txt")), u1 = read_dump(work("u1.txt")),
+             u2 = read_dump(work("u2.txt"));
+  EXPECT_EQ(u0.at("hue"), "100");
+  EXPECT_EQ(u0.at("undo_depth"), "2");
+  EXPECT_NE(u1.at("hue"), "100") << "the hue edit undone";
+  EXPECT_NE(numbers(u1.at("shown"))[2], numbers(u1.at("base"))[2]) << "the weight edit kept";
+  EXPECT_EQ(numbers(u2.at("shown"))[2], numbers(u2.at("base"))[2]) << "and then undone";
+  EXPECT_EQ(u2.at("undo_depth"), "0");
+}
+
+TEST(Studio, TheWindowResizesAndTheLayoutFollows) {
+  ASSERT_EQ(studio(kFire, "resize",
+                   "pause\nframe 40\nresize 1000 600\nwait 6\ndump " + work("z.txt") +
+                       "\nscreenshot " + work("z.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d = read_dump(work("z.txt"));
+  EXPECT_EQ(d.at("window"), "1000 600");
+  const auto img = candela::read_png(work("z.png"), 3);
+  EXPECT_EQ(img.width, 1000);
+  EXPECT_EQ(img.height, 600);
+  const auto pca = numbers(d.at("pca")), fl = numbers(d.at("flame_image"));
+  EXPECT_LE(pca[0] + pca[2], 1000);
+  EXPECT_LE(pca[1] + pca[3], 600);
+  EXPECT_LE(fl[1] + fl[3], 600);
+  // The flame is drawn in its resized view: bright pixels inside the image.
+  const auto lum = region(img, fl, static_cast<int>(fl[2]), static_cast<int>(fl[3]));
+  int bright = 0;
+  for (double v : lum) bright += v > 100;
+  EXPECT_GT(bright, 200);
+}
+
+TEST(Studio, AStoryPlaysItsPlannedFrames) {
+  // The same planner as `candela-tool story`: as many frames as it prints.
+  ASSERT_EQ(run(std::string(CANDELA_TOOL) + " story builtin:fire-tour --no-render"), 0)
+      << log_text();
+  const std::string text = log_text();
+  const size_t at = text.find("<built-in story fire-tour>: ");
+  ASSERT_NE(at, std::string::npos) << text;
+  const int planned = std::stoi(text.substr(at + 28));
+  ASSERT_EQ(studio("builtin:fire builtin:fire-tour", "story",
+                   "wait 30\ndump " + work("t.txt") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d = read_dump(work("t.txt"));
+  ASSERT_EQ(d.at("ok"), "1") << d.at("error");
+  EXPECT_EQ(std::stoi(d.at("frames")), planned);
+  EXPECT_GT(std::stoi(d.at("frame")), 5) << "it plays";
+}
+
 }  // namespace

@@ -31,6 +31,11 @@ class PcaView {
   // The model frame drawn nearest to `point` (canvas pixels from the top
   // left), within 12 pixels; -1: none.
   int pick(ImVec2 point) const;
+  // Where model frame f was last drawn (canvas pixels); (-1, -1): nowhere.
+  ImVec2 screen_of(int f) const {
+    return f >= 0 && static_cast<size_t>(f) < screen_.size() ? screen_[static_cast<size_t>(f)]
+                                                             : ImVec2(-1, -1);
+  }
 
  private:
   struct P3 {

@@ -1,5 +1,6 @@
 #include "script.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -47,6 +48,7 @@ std::string check(const std::vector<std::string>& w) {
     if (w.size() < 2 || w[1] != "pca") return "expected '" + c + " pca X Y'";
     return nums(2, 2);
   }
+  if (c == "resize") return nums(1, 2);
   if (c == "zoom") {
     if (w.size() < 2 || w[1] != "pca") return "expected 'zoom pca STEPS'";
     return nums(2, 1);
@@ -126,6 +128,9 @@ ScriptFrame Script::run_frame(Session& s, PcaView& pca) {
       s.undo();
     } else if (cmd == "drag") {
       pca.rotate(f(w[2]), f(w[3]));
+    } else if (cmd == "resize") {
+      out.resize_w = std::clamp(static_cast<int>(f(w[1])), 200, 8192);
+      out.resize_h = std::clamp(static_cast<int>(f(w[2])), 150, 8192);
     } else if (cmd == "zoom") {
       pca.zoom(f(w[2]));
     } else if (cmd == "click") {

@@ -11,6 +11,7 @@
 //   drag pca DX DY            rotate the PCA view as a mouse drag of DX, DY pixels
 //   zoom pca STEPS            as the mouse wheel
 //   click pca X Y             click at X, Y pixels from the view's top left (jump there)
+//   resize W H                resize the window (as a user dragging its corner)
 //   screenshot FILE.png       the whole window, once this frame is drawn (the
 //                             commands after it run in the next frame)
 //   dump FILE                 the UI state as "key = value" lines, as screenshot
@@ -34,6 +35,7 @@ struct ScriptCommand {
 // What a frame's commands ask of the frame loop.
 struct ScriptFrame {
   std::vector<std::string> screenshots, dumps;
+  int resize_w = 0, resize_h = 0;  // > 0: resize the window
   bool quit = false;
 };
 

@@ -92,6 +92,8 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
   out << "pca_yaw = " << pca.yaw() << "\npca_pitch = " << pca.pitch()
       << "\npca_zoom = " << pca.scale() << "\n";
   out << "status = " << s.status << "\n";
+  const ImVec2 m = pca.screen_of(s.model_frame(s.frame()));
+  out << "pca_marker = " << m.x << " " << m.y << "\n";
   if (s.ok()) {
     out << "frame = " << s.frame() << "\nmodel_frame = " << s.model_frame(s.frame())
         << "\nplaying = " << (s.playing ? 1 : 0) << "\nframes = " << s.frames() << "\n";
@@ -158,6 +160,8 @@ int run_studio(const StudioOptions& o) {
         break;
       }
     }
+    if (sf.resize_w > 0 && !platform.resize_window(sf.resize_w, sf.resize_h))
+      LOG_WARN("studio: script: resize before the window was seen");
     session.advance(ImGui::GetIO().DeltaTime);
 
     // The flame first, at the size its window gives it this frame (the UI

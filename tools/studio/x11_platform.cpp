@@ -84,6 +84,8 @@ X11Platform::X11Platform() {
 
 bool X11Platform::handle(const XEvent& ev) {
   ImGuiIO& io = ImGui::GetIO();
+  x_display_ = ev.xany.display;
+  x_window_ = ev.xany.window;
   switch (ev.type) {
     case MotionNotify:
       io.MousePos = ImVec2(static_cast<float>(ev.xmotion.x), static_cast<float>(ev.xmotion.y));
@@ -159,6 +161,14 @@ bool X11Platform::handle(const XEvent& ev) {
     default:
       return false;
   }
+}
+
+bool X11Platform::resize_window(int width, int height) {
+  if (!x_display_ || !x_window_) return false;
+  auto* dpy = static_cast<::Display*>(x_display_);
+  XResizeWindow(dpy, x_window_, static_cast<unsigned>(width), static_cast<unsigned>(height));
+  XFlush(dpy);
+  return true;
 }
 
 void X11Platform::new_frame(int width, int height, double fixed_dt) {

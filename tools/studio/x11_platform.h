@@ -23,10 +23,16 @@ class X11Platform {
   // the time since the last frame (a fixed step when `fixed_dt` > 0, for
   // reproducible scripted runs).
   void new_frame(int width, int height, double fixed_dt = 0);
+  // Asks the window manager (or the X server) for a new window size; the
+  // window backend then sees the ConfigureNotify. False before any event
+  // named the window.
+  bool resize_window(int width, int height);
 
  private:
   std::chrono::steady_clock::time_point last_;
   bool first_ = true;
+  void* x_display_ = nullptr;  // ::Display*, from the events
+  unsigned long x_window_ = 0;
 };
 
 }  // namespace candela::studio
