@@ -66,6 +66,12 @@ void Panels::draw(Session& s, FlameView* flame, PcaView& pca, double frame_ms) {
     if (s.undo()) s.status = "undone";
   }
   if (io.KeyCtrl && ImGui::IsKeyPressed(letter_key('q'), false)) quit_ = true;
+  // Space plays/pauses, the arrows step (not while a text field has the keys).
+  if (s.ok() && !io.WantTextInput && !io.KeyCtrl) {
+    if (ImGui::IsKeyPressed(ImGuiKey_Space, false)) s.playing = !s.playing;
+    if (ImGui::IsKeyPressed(ImGuiKey_LeftArrow, true)) s.step(-1);
+    if (ImGui::IsKeyPressed(ImGuiKey_RightArrow, true)) s.step(1);
+  }
 
   if (!s.ok()) {
     draw_error(s, l);

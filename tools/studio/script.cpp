@@ -48,7 +48,9 @@ std::string check(const std::vector<std::string>& w) {
     if (w.size() < 2 || w[1] != "pca") return "expected '" + c + " pca X Y'";
     return nums(2, 2);
   }
-  if (c == "resize") return nums(1, 2);
+  if (c == "resize" || c == "x-press" || c == "x-release" || c == "x-move") return nums(1, 2);
+  if (c == "x-wheel") return nums(1, 3);
+  if (c == "x-key") return w.size() == 2 ? "" : "expected 'x-key [ctrl+]KEYSYM'";
   if (c == "zoom") {
     if (w.size() < 2 || w[1] != "pca") return "expected 'zoom pca STEPS'";
     return nums(2, 1);
@@ -85,6 +87,8 @@ Script Script::load(const std::string& path) {
 
 ScriptFrame Script::run_frame(Session& s, PcaView& pca) {
   ScriptFrame out;
+  for (auto& up : key_ups_) out.x_input.push_back(up);
+  key_ups_.clear();
   if (wait_ > 0) {
     --wait_;
     return out;
@@ -131,6 +135,28 @@ ScriptFrame Script::run_frame(Session& s, PcaView& pca) {
     } else if (cmd == "resize") {
       out.resize_w = std::clamp(static_cast<int>(f(w[1])), 200, 8192);
       out.resize_h = std::clamp(static_cast<int>(f(w[2])), 150, 8192);
+    } else if (cmd == "x-press" || cmd == "x-release" || cmd == "x-move" || cmd == "x-wheel") {
+      ScriptFrame::XInput in;
+      in.kind = cmd == "x-press"     ? ScriptFrame::XInput::kPress
+                : cmd == "x-release" ? ScriptFrame::XInput::kRelease
+                : cmd == "x-move"    ? ScriptFrame::XInput::kMove
+                                     : ScriptFrame::XInput::kWheel;
+      in.x = static_cast<int>(f(w[1]));
+      in.y = static_cast<int>(f(w[2]));
+      if (w.size() > 3) in.steps = static_cast<int>(f(w[3]));
+      out.x_input.push_back(in);
+    } else if (cmd == "x-key") {
+      ScriptFrame::XInput in;
+      in.kind = ScriptFrame::XInput::kKey;
+      in.key = w[1];
+      if (in.key.rfind("ctrl+", 0) == 0) {
+        in.ctrl = true;
+        in.key = in.key.substr(5);
+      }
+      out.x_input.push_back(in);
+      in.kind = ScriptFrame::XInput::kKeyUp;
+      key_ups_.push_back(in);
+      break;  // the release goes with the next frame
     } else if (cmd == "zoom") {
       pca.zoom(f(w[2]));
     } else if (cmd == "click") {

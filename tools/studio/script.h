@@ -11,6 +11,12 @@
 //   drag pca DX DY            rotate the PCA view as a mouse drag of DX, DY pixels
 //   zoom pca STEPS            as the mouse wheel
 //   click pca X Y             click at X, Y pixels from the view's top left (jump there)
+//   x-press X Y | x-release X Y | x-move X Y    real X events (the left button, the
+//                             pointer) sent to the window: the whole path a user's take;
+//                             ImGui sees one state a frame, so put `wait 1` between them
+//   x-wheel X Y STEPS         wheel clicks (negative: towards the user)
+//   x-key [ctrl+]KEYSYM       a key pressed, released a frame later (XStringToKeysym
+//                             names: z, space, Left)
 //   resize W H                resize the window (as a user dragging its corner)
 //   screenshot FILE.png       the whole window, once this frame is drawn (the
 //                             commands after it run in the next frame)
@@ -36,6 +42,14 @@ struct ScriptCommand {
 struct ScriptFrame {
   std::vector<std::string> screenshots, dumps;
   int resize_w = 0, resize_h = 0;  // > 0: resize the window
+  // X events to send now, in order (the window backend reads them at the next poll)
+  struct XInput {
+    enum Kind { kPress, kRelease, kMove, kWheel, kKey, kKeyUp } kind;
+    int x = 0, y = 0, steps = 0;
+    std::string key;
+    bool ctrl = false;
+  };
+  std::vector<XInput> x_input;
   bool quit = false;
 };
 
@@ -54,6 +68,7 @@ class Script {
   std::vector<ScriptCommand> commands_;
   size_t at_ = 0;
   int wait_ = 0;
+  std::vector<ScriptFrame::XInput> key_ups_;  // x-key's release, a frame after its press
 };
 
 }  // namespace candela::studio

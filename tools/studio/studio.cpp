@@ -44,7 +44,6 @@ struct ImGuiScope {
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;  // the layout is fixed: no imgui.ini in the user's folder
-    io.ConfigFlags |= ImGuiConfigFlags_NavEnableKeyboard;
     ImGui::StyleColorsDark();
     if (!ImGui_ImplOpenGL3_Init("#version 300 es")) {
       ImGui::DestroyContext();
@@ -73,6 +72,33 @@ void screenshot(const std::string& path, int w, int h) {
   for (size_t i = 0, n = static_cast<size_t>(w) * h; i < n; ++i)
     for (int c = 0; c < 3; ++c) img.pixels[i * 3 + c] = flipped[i * 4 + c];
   write_png(path, img);
+}
+
+// A script's X input, sent now: the window backend reads it at the next poll.
+void send(X11Platform& p, const ScriptFrame::XInput& in) {
+  bool ok = true;
+  switch (in.kind) {
+    case ScriptFrame::XInput::kPress:
+      ok = p.send_button(1, true, in.x, in.y);
+      break;
+    case ScriptFrame::XInput::kRelease:
+      ok = p.send_button(1, false, in.x, in.y);
+      break;
+    case ScriptFrame::XInput::kMove:
+      ok = p.send_motion(in.x, in.y);
+      break;
+    case ScriptFrame::XInput::kWheel:
+      for (int i = 0; i < std::abs(in.steps) && ok; ++i) {
+        const int b = in.steps > 0 ? 4 : 5;
+        ok = p.send_button(b, true, in.x, in.y) && p.send_button(b, false, in.x, in.y);
+      }
+      break;
+    case ScriptFrame::XInput::kKey:
+    case ScriptFrame::XInput::kKeyUp:
+      ok = p.send_key(in.key.c_str(), in.kind == ScriptFrame::XInput::kKey, in.ctrl);
+      break;
+  }
+  if (!ok) LOG_WARN("studio: script: X input not sent (no window yet, or an unknown key)");
 }
 
 std::string rect_text(const PixelRect& r) {
@@ -162,6 +188,7 @@ int run_studio(const StudioOptions& o) {
     }
     if (sf.resize_w > 0 && !platform.resize_window(sf.resize_w, sf.resize_h))
       LOG_WARN("studio: script: resize before the window was seen");
+    for (const auto& in : sf.x_input) send(platform, in);
     session.advance(ImGui::GetIO().DeltaTime);
 
     // The flame first, at the size its window gives it this frame (the UI

@@ -171,6 +171,54 @@ bool X11Platform::resize_window(int width, int height) {
   return true;
 }
 
+namespace {
+template <typename Fill>
+bool send_event(void* display, unsigned long window, long mask, Fill fill) {
+  if (!display || !window) return false;
+  auto* dpy = static_cast<::Display*>(display);
+  XEvent ev{};
+  fill(ev, dpy);
+  ev.xany.display = dpy;
+  ev.xany.window = window;
+  XSendEvent(dpy, window, False, mask, &ev);
+  XSync(dpy, False);
+  return true;
+}
+}  // namespace
+
+bool X11Platform::send_button(int button, bool down, int x, int y, bool ctrl) {
+  return send_event(x_display_, x_window_, down ? ButtonPressMask : ButtonReleaseMask,
+                    [&](XEvent& ev, ::Display*) {
+                      ev.type = down ? ButtonPress : ButtonRelease;
+                      ev.xbutton.button = static_cast<unsigned>(button);
+                      ev.xbutton.x = x;
+                      ev.xbutton.y = y;
+                      ev.xbutton.state = ctrl ? ControlMask : 0;
+                      ev.xbutton.same_screen = True;
+                    });
+}
+
+bool X11Platform::send_motion(int x, int y) {
+  return send_event(x_display_, x_window_, PointerMotionMask, [&](XEvent& ev, ::Display*) {
+    ev.type = MotionNotify;
+    ev.xmotion.x = x;
+    ev.xmotion.y = y;
+    ev.xmotion.same_screen = True;
+  });
+}
+
+bool X11Platform::send_key(const char* name, bool down, bool ctrl) {
+  const KeySym sym = XStringToKeysym(name);
+  if (sym == NoSymbol) return false;
+  return send_event(x_display_, x_window_, down ? KeyPressMask : KeyReleaseMask,
+                    [&](XEvent& ev, ::Display* dpy) {
+                      ev.type = down ? KeyPress : KeyRelease;
+                      ev.xkey.keycode = XKeysymToKeycode(dpy, sym);
+                      ev.xkey.state = ctrl ? ControlMask : 0;
+                      ev.xkey.same_screen = True;
+                    });
+}
+
 void X11Platform::new_frame(int width, int height, double fixed_dt) {
   ImGuiIO& io = ImGui::GetIO();
   io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));

@@ -27,6 +27,13 @@ class X11Platform {
   // window backend then sees the ConfigureNotify. False before any event
   // named the window.
   bool resize_window(int width, int height);
+  // Real input for scripts: an event sent to the window through the X server
+  // (XSendEvent, then XSync: it is in the queue at the next poll), so it takes
+  // the whole way a user's does. x, y: window pixels; `ctrl`: Control held.
+  // button: 1 left, 2 middle, 3 right, 4/5 wheel. False before the window is known.
+  bool send_button(int button, bool down, int x, int y, bool ctrl = false);
+  bool send_motion(int x, int y);
+  bool send_key(const char* keysym_name, bool down, bool ctrl = false);
 
  private:
   std::chrono::steady_clock::time_point last_;
