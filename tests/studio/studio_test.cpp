@@ -230,6 +230,20 @@ TEST(Studio, ABrokenModelShowsItsErrorInTheWindow) {
   EXPECT_GT(light, 200);
 }
 
+TEST(Studio, AStoryThatCannotBePlannedShowsWhy) {
+  const std::string story =
+      std::string(CANDELA_SOURCE_DIR) + "/tests/eigenflame/data/bad-clip.story.toml";
+  ASSERT_EQ(
+      studio("builtin:fire " + story, "badstory", "wait 2\ndump " + work("b.txt") + "\nquit\n"), 0)
+      << log_text();
+  const auto d = read_dump(work("b.txt"));
+  EXPECT_EQ(d.at("ok"), "0");
+  EXPECT_NE(
+      d.at("error").find("bad-clip.story.toml: segment[1].clip: expected a clip of the model"),
+      std::string::npos)
+      << d.at("error");
+}
+
 TEST(Studio, ClickingATrackJumpsToThatFrame) {
   ASSERT_EQ(studio(kFire, "click",
                    "pause\nframe 50\nwait 2\ndump " + work("c0.txt") +
@@ -333,14 +347,23 @@ TEST(Studio, AStoryPlaysItsPlannedFrames) {
   const size_t at = text.find("<built-in story fire-tour>: ");
   ASSERT_NE(at, std::string::npos) << text;
   const int planned = std::stoi(text.substr(at + 28));
-  ASSERT_EQ(studio("builtin:fire builtin:fire-tour", "story",
-                   "wait 30\ndump " + work("t.txt") + "\nquit\n"),
-            0)
+  ASSERT_EQ(
+      studio("builtin:fire builtin:fire-tour", "story",
+             "wait 30\ndump " + work("t.txt") + "\nsave-scene " + work("story.toml") + "\nquit\n"),
+      0)
       << log_text();
   const auto d = read_dump(work("t.txt"));
   ASSERT_EQ(d.at("ok"), "1") << d.at("error");
   EXPECT_EQ(std::stoi(d.at("frames")), planned);
   EXPECT_GT(std::stoi(d.at("frame")), 5) << "it plays";
+  // Saved as a scene, the element plays the story (no model key: the story names it).
+  ASSERT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + work("story.toml")), 0)
+      << log_text();
+  std::ifstream in(work("story.toml"));
+  std::stringstream saved;
+  saved << in.rdbuf();
+  EXPECT_NE(saved.str().find("story = \"builtin:fire-tour\"\n"), std::string::npos) << saved.str();
+  EXPECT_EQ(saved.str().find("\nmodel = "), std::string::npos) << saved.str();
 }
 
 }  // namespace

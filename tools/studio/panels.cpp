@@ -128,12 +128,15 @@ void Panels::draw(Session& s, FlameView* flame, PcaView& pca, double frame_ms) {
 void Panels::draw_error(const Session& s, const Layout& l) {
   place(l.controls_pos, l.controls_size);
   ImGui::Begin("Studio", nullptr, kFixed);
-  ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1), "Cannot open the model");
+  ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1),
+                     s.story_failed() ? "Cannot play the story" : "Cannot open the model");
   ImGui::Separator();
   ImGui::PushTextWrapPos(0);
   ImGui::TextUnformatted(s.error().c_str());
   ImGui::Spacing();
-  ImGui::TextDisabled("Fix the file (candela-tool inspect MODEL) and open it again.");
+  ImGui::TextDisabled(
+      s.story_failed() ? "Fix the story (candela-tool story STORY --no-render) and open it again."
+                       : "Fix the file (candela-tool inspect MODEL) and open it again.");
   ImGui::PopTextWrapPos();
   ImGui::End();
 }

@@ -60,11 +60,16 @@ Session::Session(std::string model, std::string story)
   if (!story_name_.empty()) {
     try {
       const story::StoryDesc desc = story::open_story(story_name_);
+      const std::string named = story::story_model_path(desc);
+      if (named != model_name_)
+        status = "the story names " + named + "; planned against " + model_name_ +
+                 " (a saved scene plays the story's own model)";
       // The runtime always loops a story (through the first segment's transition).
       plan_ = std::make_unique<story::StoryPlan>(story::plan_story(desc, m, desc.seed, true));
     } catch (const std::exception& e) {
       const std::string what = e.what();
       error_ = what.find(story_name_) == std::string::npos ? story_name_ + ": " + what : what;
+      story_failed_ = true;
       model_.reset();
       return;
     }

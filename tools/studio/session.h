@@ -29,6 +29,7 @@ class Session {
 
   bool ok() const { return model_ != nullptr; }
   const std::string& error() const { return error_; }
+  bool story_failed() const { return story_failed_; }  // error() is the story's
   const EigenModel& model() const { return *model_; }
   const std::string& model_name() const { return model_name_; }
   const std::string& story_name() const { return story_name_; }
@@ -74,6 +75,7 @@ class Session {
  private:
   void update_shown();
   std::string model_name_, story_name_, error_;
+  bool story_failed_ = false;
   std::shared_ptr<const EigenModel> model_;
   std::unique_ptr<story::StoryPlan> plan_;
   std::vector<float> sigma_, base_, shown_;
