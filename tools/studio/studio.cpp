@@ -163,8 +163,7 @@ int run_studio(const StudioOptions& o) {
 
   FrameStats stats(static_cast<size_t>(std::max(o.bench_frames, 1)));
   const int warmup = o.bench_frames > 0 ? 10 : 0;
-  const double cpu0 = process_cpu_seconds();
-  double cpu_start = cpu0;
+  double cpu_start = process_cpu_seconds();
   using Clock = std::chrono::steady_clock;
   auto last = Clock::now();
   double frame_ms = 0;
@@ -229,7 +228,6 @@ int run_studio(const StudioOptions& o) {
                             .json(stats.count(), process_cpu_seconds() - cpu_start, -1, "window",
                                   display->width(), display->height(), "studio " + o.model)
                             .c_str());
-  (void)cpu0;
   return status;
 }
 
