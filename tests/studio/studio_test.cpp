@@ -206,6 +206,42 @@ TEST(Studio, SaveAsSceneWritesACheckedSceneWithTheEdits) {
   EXPECT_DOUBLE_EQ(std::stod(keys["speed"]), 1.5);
 }
 
+// Green over red of the flame's bright pixels (the colour of the ramp shown).
+double green_over_red(const candela::Image& img, const std::vector<double>& r) {
+  double red = 0, green = 0;
+  for (int y = static_cast<int>(r[1]); y < r[1] + r[3]; ++y)
+    for (int x = static_cast<int>(r[0]); x < r[0] + r[2]; ++x)
+      if (img.at(x, y, 0) > 60) red += img.at(x, y, 0), green += img.at(x, y, 1);
+  return red > 0 ? green / red : -1;
+}
+
+TEST(Studio, ATransferFunctionColoursTheFlameAndIsSaved) {
+  const std::string scene = work("transfer.toml");
+  fs::remove(scene);
+  ASSERT_EQ(studio(kFire, "transfer",
+                   "pause\nframe 40\nwait 2\ndump " + work("f0.txt") + "\nscreenshot " +
+                       work("f0.png") + "\nset transfer #000000 #a00000 #ff2000 #ffd0d0\nwait 2\n" +
+                       "screenshot " + work("f1.png") + "\nsave-scene " + scene +
+                       "\nundo\nwait 2\n" + "screenshot " + work("f2.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto rect = numbers(read_dump(work("f0.txt")).at("flame_image"));
+  const double hls = green_over_red(candela::read_png(work("f0.png"), 3), rect);
+  const double red = green_over_red(candela::read_png(work("f1.png"), 3), rect);
+  const double undone = green_over_red(candela::read_png(work("f2.png"), 3), rect);
+  std::printf("green/red of the flame: HLS %.3f, red transfer %.3f, undone %.3f\n", hls, red,
+              undone);
+  EXPECT_GT(hls, 0.3) << "the model's orange";
+  EXPECT_LT(red, 0.6 * hls) << "the red ramp";
+  EXPECT_NEAR(undone, hls, 0.01) << "undo brings the HLS ramp back";
+  ASSERT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + scene), 0) << log_text();
+  std::ifstream in(scene);
+  std::stringstream saved;
+  saved << in.rdbuf();
+  EXPECT_NE(saved.str().find("\ntransfer = \"#000000 #a00000 #ff2000 #ffd0d0\""), std::string::npos)
+      << saved.str();
+}
+
 TEST(Studio, ABrokenModelShowsItsErrorInTheWindow) {
   const std::string broken = work("truncated.cmodel");
   {

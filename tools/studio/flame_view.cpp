@@ -57,7 +57,13 @@ void FlameView::render(std::span<const float> weights, const Look& look, int w, 
   if (renderer_ && have_look_ && look == look_ && w == w_ && h == h_ && same_weights) return;
   if (!renderer_ || !have_look_ || !(look == look_)) {
     FlameLookSettings s;
-    s.ramp = hls_ramp(look.hue, look.saturation, m.colour.black_level);
+    if (look.transfer.size() >= 2) {
+      std::vector<Vec3> stops;
+      for (const auto& c : look.transfer) stops.push_back({c[0], c[1], c[2]});
+      s.ramp = transfer_ramp(stops, m.colour.black_level);
+    } else {
+      s.ramp = hls_ramp(look.hue, look.saturation, m.colour.black_level);
+    }
     s.brightness = look.brightness;
     s.glow_radius = std::max(0.02f, look.glow_radius);  // as the element clamps the model's
     s.glow_strength = look.glow_strength;

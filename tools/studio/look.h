@@ -2,6 +2,7 @@
 // (the eigenflame element's keys) and the weights.
 #pragma once
 
+#include <array>
 #include <vector>
 
 namespace candela::studio {
@@ -12,6 +13,10 @@ struct Look {
   float brightness = 1.0f;    // 0..16
   float glow_radius = 0.06f;  // fraction of the flame height, 0..1
   float glow_strength = 0;    // 0..8
+  // The element's `transfer`: evenly spaced colour stops (RGB 0..1), dark to
+  // bright, used instead of HLS when there are at least two.
+  static constexpr size_t kMaxStops = 8;
+  std::vector<std::array<float, 3>> transfer;
   bool operator==(const Look&) const = default;
 };
 

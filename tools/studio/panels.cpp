@@ -27,6 +27,48 @@ PixelRect rect_of(ImVec2 pos, ImVec2 size) {
           static_cast<int>(size.y)};
 }
 
+// The transfer function: a ramp preview over its evenly spaced colour stops,
+// each stop a handle (click: a colour picker), stops added or removed at the end.
+template <typename UndoPoint>
+bool transfer_editor(Look& look, UndoPoint& undo_point, Session& s) {
+  bool changed = false;
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const ImVec2 at = ImGui::GetCursorScreenPos();
+  const float w = ImGui::GetContentRegionAvail().x, h = 14;
+  const size_t n = look.transfer.size();
+  auto col = [](const std::array<float, 3>& c) {
+    return ImGui::ColorConvertFloat4ToU32(ImVec4(c[0], c[1], c[2], 1));
+  };
+  for (size_t i = 0; i + 1 < n; ++i) {
+    const float x0 = at.x + w * static_cast<float>(i) / static_cast<float>(n - 1);
+    const float x1 = at.x + w * static_cast<float>(i + 1) / static_cast<float>(n - 1);
+    dl->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + h), col(look.transfer[i]),
+                                col(look.transfer[i + 1]), col(look.transfer[i + 1]),
+                                col(look.transfer[i]));
+  }
+  ImGui::Dummy(ImVec2(w, h));
+  for (size_t i = 0; i < n; ++i) {
+    char id[32];
+    std::snprintf(id, sizeof id, "##stop%u", static_cast<unsigned>(i));
+    if (i > 0) ImGui::SameLine();
+    changed |= ImGui::ColorEdit3(id, look.transfer[i].data(), ImGuiColorEditFlags_NoInputs);
+    undo_point();
+  }
+  ImGui::SameLine();
+  if (n < Look::kMaxStops && ImGui::SmallButton("+")) {
+    s.begin_edit();
+    look.transfer.push_back(look.transfer.back());
+    changed = true;
+  }
+  ImGui::SameLine();
+  if (n > 2 && ImGui::SmallButton("-")) {
+    s.begin_edit();
+    look.transfer.pop_back();
+    changed = true;
+  }
+  return changed;
+}
+
 }  // namespace
 
 Layout Layout::of(int width, int height) {
@@ -176,10 +218,26 @@ void Panels::draw_controls(Session& s, double frame_ms) {
   if (ImGui::CollapsingHeader("Colour", ImGuiTreeNodeFlags_DefaultOpen)) {
     Look look = s.edits().look;
     bool changed = false;
-    changed |= ImGui::SliderFloat("hue", &look.hue, 0, 360, "%.0f deg");
-    undo_point();
-    changed |= ImGui::SliderFloat("saturation", &look.saturation, 0, 1);
-    undo_point();
+    bool use_transfer = look.transfer.size() >= 2;
+    if (ImGui::RadioButton("HLS", !use_transfer) && use_transfer) {
+      s.begin_edit();
+      look.transfer.clear();
+      changed = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::RadioButton("transfer function", use_transfer) && !use_transfer) {
+      s.begin_edit();
+      look.transfer = {{0, 0, 0}, {0.54f, 0.094f, 0}, {1, 0.5f, 0.125f}, {1, 0.94f, 0.75f}};
+      changed = true;
+    }
+    if (look.transfer.size() >= 2) {
+      changed |= transfer_editor(look, undo_point, s);
+    } else {
+      changed |= ImGui::SliderFloat("hue", &look.hue, 0, 360, "%.0f deg");
+      undo_point();
+      changed |= ImGui::SliderFloat("saturation", &look.saturation, 0, 1);
+      undo_point();
+    }
     changed |= ImGui::SliderFloat("brightness", &look.brightness, 0, 4);
     undo_point();
     changed |= ImGui::SliderFloat("glow radius", &look.glow_radius, 0, 0.5f);

@@ -1,6 +1,7 @@
 #include "script.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -38,6 +39,17 @@ std::string check(const std::vector<std::string>& w) {
   if (c == "step") return w.size() == 1 ? "" : nums(1, 1);
   if (c == "set") {
     if (w.size() >= 2 && w[1] == "weight") return nums(2, 2);
+    if (w.size() >= 2 && w[1] == "transfer") {
+      if (w.size() == 3 && w[2] == "off") return {};
+      if (w.size() < 4 || w.size() > 2 + 8)
+        return "expected set transfer off | 2 to 8 #rrggbb stops";
+      for (size_t i = 2; i < w.size(); ++i) {
+        unsigned r, g, b;
+        if (w[i].size() != 7 || std::sscanf(w[i].c_str(), "#%2x%2x%2x", &r, &g, &b) != 3)
+          return "expected a colour stop #rrggbb, got '" + w[i] + "'";
+      }
+      return {};
+    }
     static const char* keys[] = {"detail",     "hue",         "saturation",
                                  "brightness", "glow_radius", "glow_strength"};
     for (const char* k : keys)
@@ -71,8 +83,8 @@ Script Script::load(const std::string& path) {
   s.file_ = path;
   std::string text;
   for (int n = 1; std::getline(in, text); ++n) {
-    const size_t hash = text.find('#');
-    if (hash != std::string::npos) text.resize(hash);
+    const size_t first = text.find_first_not_of(" \t");
+    if (first != std::string::npos && text[first] == '#') continue;  // a comment line
     std::istringstream words(text);
     ScriptCommand c;
     c.line = n;
@@ -124,6 +136,14 @@ ScriptFrame Script::run_frame(Session& s, PcaView& pca) {
         if (w[1] == "brightness") l.brightness = v;
         if (w[1] == "glow_radius") l.glow_radius = v;
         if (w[1] == "glow_strength") l.glow_strength = v;
+        if (w[1] == "transfer") {
+          l.transfer.clear();
+          for (size_t i = 2; i < w.size() && w[2] != "off"; ++i) {
+            unsigned r = 0, g = 0, b = 0;
+            std::sscanf(w[i].c_str(), "#%2x%2x%2x", &r, &g, &b);
+            l.transfer.push_back({r / 255.0f, g / 255.0f, b / 255.0f});
+          }
+        }
         s.set_look(l);
       }
     } else if (cmd == "reset") {

@@ -1,12 +1,13 @@
 // Scripted input (--script FILE): one command a line, run at the start of a
 // frame through the same Session / PcaView calls the widgets make, so tests
-// drive the studio as a user does. '#' starts a comment.
+// drive the studio as a user does. A line starting with '#' is a comment.
 //
 //   wait N                    let N frames pass
 //   pause | play | step [N] | frame N | speed X
 //   set weight K SIGMAS       offset of weight K (0-based), standard deviations
 //   set detail SCALE          scale of the detail weights (K >= 50)
 //   set hue|saturation|brightness|glow_radius|glow_strength V
+//   set transfer #rrggbb #rrggbb ... | set transfer off   the transfer function (2-8 stops)
 //   reset | undo              reset the weight edits / undo the last edit
 //   drag pca DX DY            rotate the PCA view as a mouse drag of DX, DY pixels
 //   zoom pca STEPS            as the mouse wheel

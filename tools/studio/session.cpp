@@ -196,6 +196,11 @@ void Session::set_look(const Look& l) {
   edits_.look.brightness = std::clamp(l.brightness, 0.0f, 16.0f);
   edits_.look.glow_radius = std::clamp(l.glow_radius, 0.0f, 1.0f);
   edits_.look.glow_strength = std::clamp(l.glow_strength, 0.0f, 8.0f);
+  edits_.look.transfer = l.transfer;
+  if (edits_.look.transfer.size() > Look::kMaxStops) edits_.look.transfer.resize(Look::kMaxStops);
+  if (edits_.look.transfer.size() == 1) edits_.look.transfer.clear();
+  for (auto& c : edits_.look.transfer)
+    for (float& v : c) v = std::clamp(v, 0.0f, 1.0f);
 }
 
 void Session::reset_edits() {
@@ -231,6 +236,17 @@ std::string Session::scene_text() const {
   s += "brightness = " + num(l.brightness) + "\n";
   s += "glow_radius = " + num(l.glow_radius) + "\n";
   s += "glow_strength = " + num(l.glow_strength) + "\n";
+  if (l.transfer.size() >= 2) {
+    std::string stops;
+    for (const auto& c : l.transfer) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "#%02x%02x%02x", static_cast<int>(std::lround(c[0] * 255)),
+                    static_cast<int>(std::lround(c[1] * 255)),
+                    static_cast<int>(std::lround(c[2] * 255)));
+      stops += (stops.empty() ? "" : " ") + std::string(hex);
+    }
+    s += "transfer = \"" + stops + "\"  # used instead of hue and saturation\n";
+  }
   // The element has no keys for weight edits yet: keep them as a note.
   std::string w;
   for (int k = 0; k < shape_weights(); ++k)

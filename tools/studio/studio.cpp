@@ -131,7 +131,7 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
     const Look& l = s.edits().look;
     out << "\nhue = " << l.hue << "\nsaturation = " << l.saturation
         << "\nbrightness = " << l.brightness << "\nglow_radius = " << l.glow_radius
-        << "\nglow_strength = " << l.glow_strength
+        << "\nglow_strength = " << l.glow_strength << "\ntransfer_stops = " << l.transfer.size()
         << "\ndetail_scale = " << s.edits().weights.detail_scale
         << "\nundo_depth = " << s.undo_depth() << "\n";
   }
