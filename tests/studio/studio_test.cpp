@@ -242,6 +242,38 @@ TEST(Studio, ATransferFunctionColoursTheFlameAndIsSaved) {
       << saved.str();
 }
 
+TEST(Studio, FindsTheModelsReports) {
+  // A model with what `candela-tool build` writes beside it: MODEL.report/*.png.
+  const std::string model = work("reported.cmodel"), folder = model + ".report";
+  fs::copy_file(kFire, model, fs::copy_options::overwrite_existing);
+  fs::create_directories(folder);
+  candela::Image img;
+  img.width = 64;
+  img.height = 32;
+  img.channels = 3;
+  img.pixels.assign(64 * 32 * 3, 200);
+  candela::write_png(folder + "/psnr.png", img);
+  candela::write_png(folder + "/eigenfires.png", img);
+  std::ofstream(folder + "/notes.txt") << "not a report";
+  ASSERT_EQ(studio(model, "reports",
+                   "wait 1\nshow reports\nwait 3\ndump " + work("r.txt") + "\nscreenshot " +
+                       work("r.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d = read_dump(work("r.txt"));
+  EXPECT_EQ(d.at("reports"), "eigenfires.png psnr.png");
+  // The first tab's image (uniform gray 200), fitted to the controls' width.
+  const auto shot = candela::read_png(work("r.png"), 3);
+  const int controls_w = static_cast<int>(numbers(d.at("flame_view"))[0]);
+  int gray = 0;
+  for (int y = 0; y < shot.height; ++y)
+    for (int x = 0; x < controls_w; ++x)
+      gray += shot.at(x, y, 0) == 200 && shot.at(x, y, 1) == 200 && shot.at(x, y, 2) == 200;
+  EXPECT_GT(gray, 200 * 100) << "the report is shown";
+  ASSERT_EQ(studio(kFire, "noreports", "wait 1\ndump " + work("r0.txt") + "\nquit\n"), 0);
+  EXPECT_EQ(read_dump(work("r0.txt")).at("reports"), "");
+}
+
 TEST(Studio, ABrokenModelShowsItsErrorInTheWindow) {
   const std::string broken = work("truncated.cmodel");
   {

@@ -7,6 +7,7 @@
 #include "elements/eigenflame/eigenflame.h"
 #include "model/flame_model.h"
 #include "pca_view.h"
+#include "reports_view.h"
 #include "session.h"
 #include "x11_platform.h"
 
@@ -100,7 +101,8 @@ bool save_scene_reporting(Session& s, const std::string& path) {
   }
 }
 
-void Panels::draw(Session& s, FlameView* flame, PcaView& pca, double frame_ms) {
+void Panels::draw(Session& s, FlameView* flame, PcaView& pca, ReportsView& reports,
+                  double frame_ms) {
   const ImGuiIO& io = ImGui::GetIO();
   const Layout l =
       Layout::of(static_cast<int>(io.DisplaySize.x), static_cast<int>(io.DisplaySize.y));
@@ -120,7 +122,7 @@ void Panels::draw(Session& s, FlameView* flame, PcaView& pca, double frame_ms) {
   } else {
     place(l.controls_pos, l.controls_size);
     ImGui::Begin("Studio", nullptr, kFixed);
-    draw_controls(s, frame_ms);
+    draw_controls(s, reports, frame_ms);
     ImGui::End();
   }
 
@@ -183,7 +185,7 @@ void Panels::draw_error(const Session& s, const Layout& l) {
   ImGui::End();
 }
 
-void Panels::draw_controls(Session& s, double frame_ms) {
+void Panels::draw_controls(Session& s, ReportsView& reports, double frame_ms) {
   const model::FlameModel& m = *s.model().model;
   const Edits before = s.edits();  // what a widget's gesture undoes to
   auto undo_point = [&] {
@@ -257,6 +259,10 @@ void Panels::draw_controls(Session& s, double frame_ms) {
     if (ImGui::Button("Undo (Ctrl+Z)") && s.undo()) s.status = "undone";
     if (!s.status.empty()) ImGui::TextWrapped("%s", s.status.c_str());
   }
+
+  if (open_reports) ImGui::SetNextItemOpen(true);
+  open_reports = false;
+  if (ImGui::CollapsingHeader("Reports")) reports.draw(ImGui::GetContentRegionAvail().x);
 
   if (ImGui::CollapsingHeader("Weights", ImGuiTreeNodeFlags_DefaultOpen)) {
     if (ImGui::Button("Reset weights")) s.reset_edits();

@@ -15,6 +15,7 @@ namespace candela::studio {
 
 class Session;
 class PcaView;
+class ReportsView;
 
 struct Layout {
   ImVec2 controls_pos, controls_size, flame_pos, flame_size, pca_pos, pca_size;
@@ -33,13 +34,15 @@ class Panels {
  public:
   Panels();
   // Builds this frame's UI. `flame` may be null (no model).
-  void draw(Session& session, FlameView* flame, PcaView& pca, double frame_ms);
+  void draw(Session& session, FlameView* flame, PcaView& pca, ReportsView& reports,
+            double frame_ms);
   const DrawnRects& drawn() const { return drawn_; }
   bool quit_requested() const { return quit_; }
   std::string scene_path = "studio-scene.toml";
+  bool open_reports = false;  // opens the Reports section at the next draw
 
  private:
-  void draw_controls(Session& s, double frame_ms);
+  void draw_controls(Session& s, ReportsView& reports, double frame_ms);
   void draw_error(const Session& s, const Layout& l);
   DrawnRects drawn_;
   bool quit_ = false;

@@ -60,6 +60,7 @@ std::string check(const std::vector<std::string>& w) {
     if (w.size() < 2 || w[1] != "pca") return "expected '" + c + " pca X Y'";
     return nums(2, 2);
   }
+  if (c == "show") return w.size() == 2 && w[1] == "reports" ? "" : "expected 'show reports'";
   if (c == "resize" || c == "x-press" || c == "x-release" || c == "x-move") return nums(1, 2);
   if (c == "x-wheel") return nums(1, 3);
   if (c == "x-key") return w.size() == 2 ? "" : "expected 'x-key [ctrl+]KEYSYM'";
@@ -152,6 +153,8 @@ ScriptFrame Script::run_frame(Session& s, PcaView& pca) {
       s.undo();
     } else if (cmd == "drag") {
       pca.rotate(f(w[2]), f(w[3]));
+    } else if (cmd == "show") {
+      out.show_reports = true;
     } else if (cmd == "resize") {
       out.resize_w = std::clamp(static_cast<int>(f(w[1])), 200, 8192);
       out.resize_h = std::clamp(static_cast<int>(f(w[2])), 150, 8192);

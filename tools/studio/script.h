@@ -18,6 +18,7 @@
 //   x-wheel X Y STEPS         wheel clicks (negative: towards the user)
 //   x-key [ctrl+]KEYSYM       a key pressed, released a frame later (XStringToKeysym
 //                             names: z, space, Left)
+//   show reports              open the Reports section (its first tab)
 //   resize W H                resize the window (as a user dragging its corner)
 //   screenshot FILE.png       the whole window, once this frame is drawn (the
 //                             commands after it run in the next frame)
@@ -43,6 +44,7 @@ struct ScriptCommand {
 struct ScriptFrame {
   std::vector<std::string> screenshots, dumps;
   int resize_w = 0, resize_h = 0;  // > 0: resize the window
+  bool show_reports = false;
   // X events to send now, in order (the window backend reads them at the next poll)
   struct XInput {
     enum Kind { kPress, kRelease, kMove, kWheel, kKey, kKeyUp } kind;

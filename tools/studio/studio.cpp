@@ -20,6 +20,7 @@
 #include "gl/gles.h"
 #include "panels.h"
 #include "pca_view.h"
+#include "reports_view.h"
 #include "script.h"
 #include "session.h"
 #include "x11_platform.h"
@@ -106,8 +107,8 @@ std::string rect_text(const PixelRect& r) {
          std::to_string(r.h);
 }
 
-void dump(const std::string& path, const Session& s, const PcaView& pca, const Panels& p, int w,
-          int h) {
+void dump(const std::string& path, const Session& s, const PcaView& pca, const Panels& p,
+          const ReportsView& reports, int w, int h) {
   std::ofstream out(path, std::ios::trunc);
   out << "ok = " << (s.ok() ? 1 : 0) << "\n";
   out << "error = " << s.error() << "\n";
@@ -118,6 +119,9 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
   out << "pca_yaw = " << pca.yaw() << "\npca_pitch = " << pca.pitch()
       << "\npca_zoom = " << pca.scale() << "\n";
   out << "status = " << s.status << "\n";
+  out << "reports = ";
+  for (size_t i = 0; i < reports.count(); ++i) out << (i ? " " : "") << reports.name(i);
+  out << "\n";
   const ImVec2 m = pca.screen_of(s.model_frame(s.frame()));
   out << "pca_marker = " << m.x << " " << m.y << "\n";
   if (s.ok()) {
@@ -159,6 +163,7 @@ int run_studio(const StudioOptions& o) {
   std::unique_ptr<FlameView> flame;
   if (session.ok()) flame = std::make_unique<FlameView>(session.model());
   PcaView pca(session);
+  ReportsView reports(o.model);
   Panels panels;
 
   FrameStats stats(static_cast<size_t>(std::max(o.bench_frames, 1)));
@@ -188,6 +193,7 @@ int run_studio(const StudioOptions& o) {
     if (sf.resize_w > 0 && !platform.resize_window(sf.resize_w, sf.resize_h))
       LOG_WARN("studio: script: resize before the window was seen");
     for (const auto& in : sf.x_input) send(platform, in);
+    if (sf.show_reports) panels.open_reports = true;
     session.advance(ImGui::GetIO().DeltaTime);
 
     // The flame first, at the size its window gives it this frame (the UI
@@ -199,7 +205,7 @@ int run_studio(const StudioOptions& o) {
       flame->render(session.shown(), session.edits().look, static_cast<int>(fs.x),
                     static_cast<int>(fs.y));
     }
-    panels.draw(session, flame.get(), pca, frame_ms);
+    panels.draw(session, flame.get(), pca, reports, frame_ms);
     ImGui::Render();
 
     display->begin_frame();
@@ -207,7 +213,7 @@ int run_studio(const StudioOptions& o) {
     glClear(GL_COLOR_BUFFER_BIT);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     for (const auto& path : sf.screenshots) screenshot(path, w, h);
-    for (const auto& path : sf.dumps) dump(path, session, pca, panels, w, h);
+    for (const auto& path : sf.dumps) dump(path, session, pca, panels, reports, w, h);
     display->present();
 
     const auto t1 = Clock::now();
