@@ -14,9 +14,13 @@
 namespace candela::studio {
 namespace {
 
+// The panes tile the window, so none draws a background: the frame is cleared
+// to the panes' colour (kPaneColour) once, which on llvmpipe saves blending
+// the whole window again (fragment work is most of a frame there).
 constexpr ImGuiWindowFlags kFixed = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
                                     ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
-                                    ImGuiWindowFlags_NoBringToFrontOnFocus;
+                                    ImGuiWindowFlags_NoBringToFrontOnFocus |
+                                    ImGuiWindowFlags_NoBackground;
 
 void place(ImVec2 pos, ImVec2 size) {
   ImGui::SetNextWindowPos(pos, ImGuiCond_Always);

@@ -17,6 +17,9 @@ class Session;
 class PcaView;
 class ReportsView;
 
+// What the frame is cleared to: the panes' background (they draw none).
+inline constexpr float kPaneColour[3] = {0.06f, 0.06f, 0.06f};
+
 struct Layout {
   ImVec2 controls_pos, controls_size, flame_pos, flame_size, pca_pos, pca_size;
   float title_h = 0;  // each window's title bar

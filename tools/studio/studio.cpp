@@ -209,7 +209,7 @@ int run_studio(const StudioOptions& o) {
     ImGui::Render();
 
     display->begin_frame();
-    glClearColor(0.06f, 0.06f, 0.07f, 1);
+    glClearColor(kPaneColour[0], kPaneColour[1], kPaneColour[2], 1);
     glClear(GL_COLOR_BUFFER_BIT);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     for (const auto& path : sf.screenshots) screenshot(path, w, h);
