@@ -27,6 +27,7 @@ build=(
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev zlib1g-dev
   libcamera-dev
+  libimgui-dev  # the studio window (candela-tool studio): Dear ImGui + its OpenGL ES 3 backend source
   # Debian packages (board/package.sh, ctest -L package): cpack + dpkg-shlibdeps, lintian
   dpkg-dev lintian
 )

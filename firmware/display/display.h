@@ -8,6 +8,8 @@
 #include <string>
 #include <string_view>
 
+union _XEvent;  // <X11/Xlib.h>'s XEvent, for DisplayEvents::on_x11_event
+
 namespace candela {
 
 // Keys the emulator and kiosk understand; backends translate their own codes.
@@ -17,6 +19,14 @@ class DisplayEvents {
  public:
   virtual ~DisplayEvents() = default;
   virtual void on_key(Key key) = 0;
+  // The window backend hands every X11 event here first (pointer, keys with
+  // their text, focus, resize: what a desktop UI such as the studio needs).
+  // Returning true consumes it: no on_key(), no quit on Esc/q. The default
+  // consumes nothing, so the frame loop and the other backends never see it.
+  virtual bool on_x11_event(const _XEvent& event) {
+    (void)event;
+    return false;
+  }
 };
 
 struct DisplayOptions {
@@ -31,6 +41,7 @@ struct DisplayOptions {
   std::string sound_path;
   int fps = 60;  // the rate frames are written at (headless video)
   bool vsync = true;
+  std::string title = "Candela";  // window: its title
 };
 
 class Display {

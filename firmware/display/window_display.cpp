@@ -1,5 +1,7 @@
 // The desktop emulator: an X11 window (also works under XWayland) with an EGL
 // window surface. Esc/q quit; arrows, space and o are passed on as wind keys.
+// Every X event also goes to DisplayEvents::on_x11_event first (the studio's
+// UI); the window's size follows ConfigureNotify (resizing).
 #include <memory>
 #include <optional>
 
@@ -28,11 +30,13 @@ class WindowDisplay final : public Display {
     if (!x_) throw RuntimeError("window: cannot open X display (is DISPLAY set?)");
     const int screen = DefaultScreen(x_);
     XSetWindowAttributes attrs{};
-    attrs.event_mask = KeyPressMask | StructureNotifyMask | ExposureMask;
+    attrs.event_mask = KeyPressMask | KeyReleaseMask | ButtonPressMask | ButtonReleaseMask |
+                       PointerMotionMask | LeaveWindowMask | FocusChangeMask | StructureNotifyMask |
+                       ExposureMask;
     attrs.background_pixel = BlackPixel(x_, screen);
     win_ = XCreateWindow(x_, RootWindow(x_, screen), 0, 0, width_, height_, 0, CopyFromParent,
                          InputOutput, CopyFromParent, CWEventMask | CWBackPixel, &attrs);
-    XStoreName(x_, win_, "Candela");
+    XStoreName(x_, win_, o.title.c_str());
     wm_delete_ = XInternAtom(x_, "WM_DELETE_WINDOW", False);
     XSetWMProtocols(x_, win_, &wm_delete_, 1);
     XMapWindow(x_, win_);
@@ -82,6 +86,7 @@ class WindowDisplay final : public Display {
         width_ = ev.xconfigure.width;
         height_ = ev.xconfigure.height;
       }
+      if (events.on_x11_event(ev)) continue;
       if (ev.type == KeyPress) {
         switch (XLookupKeysym(&ev.xkey, 0)) {
           case XK_Escape:

@@ -1,0 +1,437 @@
+// candela-tool studio under Xvfb (ctest runs this program inside xvfb-run),
+// driven by --script: the studio's flame answers a weight edit as
+// render-weights does, the PCA view rotates without touching the flame, "save
+// as scene" writes what candela --check accepts with the edited values, and a
+// broken model shows its error in the window.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kFire = std::string(CANDELA_SOURCE_DIR) + "/firmware/models/fire.cmodel";
+
+std::string work(const std::string& name) {
+  fs::create_directories(STUDIO_WORK_DIR);
+  return std::string(STUDIO_WORK_DIR) + "/" + name;
+}
+
+int run(const std::string& cmd) {
+  const int rc = std::system((cmd + " > " + work("last.log") + " 2>&1").c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+std::string log_text() {
+  std::ifstream in(work("last.log"));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Runs the studio with these script lines; returns its exit status.
+int studio(const std::string& model, const std::string& name, const std::string& lines) {
+  const std::string script = work(name + ".script");
+  std::ofstream(script) << lines;
+  return run(std::string(CANDELA_TOOL) + " studio " + model + " --size 1280x720 --script " +
+             script);
+}
+
+std::map<std::string, std::string> read_dump(const std::string& path) {
+  std::map<std::string, std::string> d;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) {
+    const size_t eq = line.find(" = ");
+    if (eq != std::string::npos) d[line.substr(0, eq)] = line.substr(eq + 3);
+  }
+  return d;
+}
+
+std::vector<double> numbers(const std::string& s) {
+  std::vector<double> v;
+  std::istringstream in(s);
+  for (double x; in >> x;) v.push_back(x);
+  return v;
+}
+
+double luma(const candela::Image& img, int x, int y) {
+  return 0.2126 * img.at(x, y, 0) + 0.7152 * img.at(x, y, 1) + 0.0722 * img.at(x, y, 2);
+}
+
+// The window's pixels inside `rect` (x y w h) averaged down to w x h luma.
+std::vector<double> region(const candela::Image& img, const std::vector<double>& rect, int w,
+                           int h) {
+  std::vector<double> out(static_cast<size_t>(w) * h, 0.0);
+  const double sx = rect[2] / w, sy = rect[3] / h;
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const int x0 = static_cast<int>(rect[0] + i * sx),
+                x1 = static_cast<int>(rect[0] + (i + 1) * sx);
+      const int y0 = static_cast<int>(rect[1] + j * sy),
+                y1 = static_cast<int>(rect[1] + (j + 1) * sy);
+      double s = 0;
+      int n = 0;
+      for (int y = y0; y < std::max(y1, y0 + 1); ++y)
+        for (int x = x0; x < std::max(x1, x0 + 1); ++x) s += luma(img, x, y), ++n;
+      out[static_cast<size_t>(j) * w + i] = s / n;
+    }
+  return out;
+}
+
+std::vector<double> whole(const candela::Image& img) {
+  return region(img, {0, 0, static_cast<double>(img.width), static_cast<double>(img.height)},
+                img.width, img.height);
+}
+
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  double ma = 0, mb = 0;
+  for (size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
+  ma /= a.size(), mb /= b.size();
+  double sab = 0, saa = 0, sbb = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    sab += (a[i] - ma) * (b[i] - mb), saa += (a[i] - ma) * (a[i] - ma),
+        sbb += (b[i] - mb) * (b[i] - mb);
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0;
+}
+
+std::vector<double> minus(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> d(a.size());
+  for (size_t i = 0; i < a.size(); ++i) d[i] = a[i] - b[i];
+  return d;
+}
+
+double mean_abs(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += std::abs(x);
+  return s / v.size();
+}
+
+TEST(Studio, AWeightEditChangesTheFlameAsRenderWeightsDoes) {
+  ASSERT_EQ(studio(kFire, "weight",
+                   "pause\nframe 40\nwait 2\ndump " + work("w0.txt") + "\nscreenshot " +
+                       work("w0.png") + "\nset weight 3 +2.0\nwait 2\ndump " + work("w1.txt") +
+                       "\nscreenshot " + work("w1.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d0 = read_dump(work("w0.txt")), d1 = read_dump(work("w1.txt"));
+  ASSERT_EQ(d1.at("ok"), "1");
+  EXPECT_EQ(d1.at("model_frame"), "40");
+  const auto base = numbers(d1.at("base")), shown = numbers(d1.at("shown"));
+  ASSERT_GT(shown.size(), 3u);
+  EXPECT_GT(shown[3] - base[3], 0) << "a +2 sigma offset raises weight 3";
+  EXPECT_EQ(numbers(d0.at("shown"))[3], base[3]) << "before the edit the frame's own weight";
+  for (size_t k = 0; k < shown.size(); ++k)
+    if (k != 3) {
+      EXPECT_EQ(shown[k], base[k]) << "weight " << k << " untouched";
+    }
+
+  // The same edit through render-weights (the CPU reconstruction and colour).
+  char set[64];
+  std::snprintf(set, sizeof set, "3=%.9g", shown[3]);
+  const std::string rw = std::string(CANDELA_TOOL) + " render-weights " + kFire + " --frame 40";
+  ASSERT_EQ(run(rw + " --out " + work("r0.png")), 0) << log_text();
+  ASSERT_EQ(run(rw + " --set " + set + " --out " + work("r1.png")), 0) << log_text();
+  const auto r0 = candela::read_png(work("r0.png"), 3), r1 = candela::read_png(work("r1.png"), 3);
+  const auto s0 = candela::read_png(work("w0.png"), 3), s1 = candela::read_png(work("w1.png"), 3);
+  const auto rect = numbers(d1.at("flame_image"));
+  ASSERT_EQ(rect.size(), 4u);
+  const auto ds =
+      minus(region(s1, rect, r0.width, r0.height), region(s0, rect, r0.width, r0.height));
+  const auto dr = minus(whole(r1), whole(r0));
+  const double c = correlation(ds, dr), ratio = mean_abs(ds) / mean_abs(dr);
+  std::printf(
+      "weight 3 +2 sigma: studio change %.2f, render-weights %.2f (ratio %.2f), correlation %.3f\n",
+      mean_abs(ds), mean_abs(dr), ratio, c);
+  EXPECT_GT(mean_abs(dr), 1.0) << "the edit is visible in render-weights";
+  EXPECT_GT(c, 0.8) << "the flame changes where and as render-weights' does";
+  EXPECT_GT(ratio, 0.6);
+  EXPECT_LT(ratio, 1.6);
+}
+
+TEST(Studio, RotatingThePcaViewChangesItAndNotTheFlame) {
+  ASSERT_EQ(studio(kFire, "rotate",
+                   "pause\nframe 10\nwait 2\ndump " + work("p0.txt") + "\nscreenshot " +
+                       work("p0.png") + "\ndrag pca 120 0\nwait 2\ndump " + work("p1.txt") +
+                       "\nscreenshot " + work("p1.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d0 = read_dump(work("p0.txt")), d1 = read_dump(work("p1.txt"));
+  EXPECT_NEAR(std::stod(d1.at("pca_yaw")) - std::stod(d0.at("pca_yaw")), 1.2, 1e-4);
+  const auto a = candela::read_png(work("p0.png"), 3), b = candela::read_png(work("p1.png"), 3);
+  const auto pca = numbers(d1.at("pca")), flame = numbers(d1.at("flame_view"));
+  const int pw = static_cast<int>(pca[2]), ph = static_cast<int>(pca[3]);
+  const double pca_change = mean_abs(minus(region(b, pca, pw, ph), region(a, pca, pw, ph)));
+  const int fw = static_cast<int>(flame[2]), fh = static_cast<int>(flame[3]);
+  const double flame_change = mean_abs(minus(region(b, flame, fw, fh), region(a, flame, fw, fh)));
+  std::printf("PCA view change %.3f, flame change %.3f (mean |luma| difference)\n", pca_change,
+              flame_change);
+  EXPECT_GT(pca_change, 0.3) << "the tracks moved";
+  EXPECT_LT(flame_change, 0.01) << "the flame did not";
+}
+
+TEST(Studio, SaveAsSceneWritesACheckedSceneWithTheEdits) {
+  const std::string scene = work("edited.toml");
+  fs::remove(scene);
+  ASSERT_EQ(studio(kFire, "save",
+                   "set hue 200\nset saturation 0.5\nset brightness 1.25\nset glow_radius 0.2\n"
+                   "set glow_strength 0.75\nspeed 1.5\nsave-scene " +
+                       scene + "\ndump " + work("s.txt") + "\nquit\n"),
+            0)
+      << log_text();
+  EXPECT_EQ(read_dump(work("s.txt")).at("status"), "saved " + scene);
+  ASSERT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + scene), 0) << log_text();
+  std::ifstream in(scene);
+  std::map<std::string, std::string> keys;
+  for (std::string line; std::getline(in, line);) {
+    const size_t eq = line.find(" = ");
+    if (eq != std::string::npos && line[0] != '#') keys[line.substr(0, eq)] = line.substr(eq + 3);
+  }
+  EXPECT_EQ(keys["kind"], "\"eigenflame\"");
+  EXPECT_EQ(keys["model"], "\"" + fs::absolute(kFire).lexically_normal().string() + "\"");
+  EXPECT_DOUBLE_EQ(std::stod(keys["hue"]), 200);
+  EXPECT_DOUBLE_EQ(std::stod(keys["saturation"]), 0.5);
+  EXPECT_DOUBLE_EQ(std::stod(keys["brightness"]), 1.25);
+  EXPECT_DOUBLE_EQ(std::stod(keys["glow_radius"]), 0.2);
+  EXPECT_DOUBLE_EQ(std::stod(keys["glow_strength"]), 0.75);
+  EXPECT_DOUBLE_EQ(std::stod(keys["speed"]), 1.5);
+}
+
+// Green over red of the flame's bright pixels (the colour of the ramp shown).
+double green_over_red(const candela::Image& img, const std::vector<double>& r) {
+  double red = 0, green = 0;
+  for (int y = static_cast<int>(r[1]); y < r[1] + r[3]; ++y)
+    for (int x = static_cast<int>(r[0]); x < r[0] + r[2]; ++x)
+      if (img.at(x, y, 0) > 60) red += img.at(x, y, 0), green += img.at(x, y, 1);
+  return red > 0 ? green / red : -1;
+}
+
+TEST(Studio, ATransferFunctionColoursTheFlameAndIsSaved) {
+  const std::string scene = work("transfer.toml");
+  fs::remove(scene);
+  ASSERT_EQ(studio(kFire, "transfer",
+                   "pause\nframe 40\nwait 2\ndump " + work("f0.txt") + "\nscreenshot " +
+                       work("f0.png") + "\nset transfer #000000 #a00000 #ff2000 #ffd0d0\nwait 2\n" +
+                       "screenshot " + work("f1.png") + "\nsave-scene " + scene +
+                       "\nundo\nwait 2\n" + "screenshot " + work("f2.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto rect = numbers(read_dump(work("f0.txt")).at("flame_image"));
+  const double hls = green_over_red(candela::read_png(work("f0.png"), 3), rect);
+  const double red = green_over_red(candela::read_png(work("f1.png"), 3), rect);
+  const double undone = green_over_red(candela::read_png(work("f2.png"), 3), rect);
+  std::printf("green/red of the flame: HLS %.3f, red transfer %.3f, undone %.3f\n", hls, red,
+              undone);
+  EXPECT_GT(hls, 0.3) << "the model's orange";
+  EXPECT_LT(red, 0.6 * hls) << "the red ramp";
+  EXPECT_NEAR(undone, hls, 0.01) << "undo brings the HLS ramp back";
+  ASSERT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + scene), 0) << log_text();
+  std::ifstream in(scene);
+  std::stringstream saved;
+  saved << in.rdbuf();
+  EXPECT_NE(saved.str().find("\ntransfer = \"#000000 #a00000 #ff2000 #ffd0d0\""), std::string::npos)
+      << saved.str();
+}
+
+TEST(Studio, FindsTheModelsReports) {
+  // A model with what `candela-tool build` writes beside it: MODEL.report/*.png.
+  const std::string model = work("reported.cmodel"), folder = model + ".report";
+  fs::copy_file(kFire, model, fs::copy_options::overwrite_existing);
+  fs::create_directories(folder);
+  candela::Image img;
+  img.width = 64;
+  img.height = 32;
+  img.channels = 3;
+  img.pixels.assign(64 * 32 * 3, 200);
+  candela::write_png(folder + "/psnr.png", img);
+  candela::write_png(folder + "/eigenfires.png", img);
+  std::ofstream(folder + "/notes.txt") << "not a report";
+  ASSERT_EQ(studio(model, "reports",
+                   "wait 1\nshow reports\nwait 3\ndump " + work("r.txt") + "\nscreenshot " +
+                       work("r.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d = read_dump(work("r.txt"));
+  EXPECT_EQ(d.at("reports"), "eigenfires.png psnr.png");
+  // The first tab's image (uniform gray 200), fitted to the controls' width.
+  const auto shot = candela::read_png(work("r.png"), 3);
+  const int controls_w = static_cast<int>(numbers(d.at("flame_view"))[0]);
+  int gray = 0;
+  for (int y = 0; y < shot.height; ++y)
+    for (int x = 0; x < controls_w; ++x)
+      gray += shot.at(x, y, 0) == 200 && shot.at(x, y, 1) == 200 && shot.at(x, y, 2) == 200;
+  EXPECT_GT(gray, 200 * 100) << "the report is shown";
+  ASSERT_EQ(studio(kFire, "noreports", "wait 1\ndump " + work("r0.txt") + "\nquit\n"), 0);
+  EXPECT_EQ(read_dump(work("r0.txt")).at("reports"), "");
+}
+
+TEST(Studio, ABrokenModelShowsItsErrorInTheWindow) {
+  const std::string broken = work("truncated.cmodel");
+  {
+    std::ifstream in(kFire, std::ios::binary);
+    std::vector<char> bytes(4096);
+    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    std::ofstream(broken, std::ios::binary).write(bytes.data(), in.gcount());
+  }
+  ASSERT_EQ(studio(broken, "broken",
+                   "wait 2\ndump " + work("e.txt") + "\nscreenshot " + work("e.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d = read_dump(work("e.txt"));
+  EXPECT_EQ(d.at("ok"), "0");
+  EXPECT_NE(d.at("error").find(broken), std::string::npos) << d.at("error");
+  EXPECT_GT(d.at("error").size(), broken.size() + 10) << "and says what is wrong";
+  // The window shows it: the controls' corner holds text (light pixels on the dark panel).
+  const auto img = candela::read_png(work("e.png"), 3);
+  int light = 0;
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 300; ++x) light += luma(img, x, y) > 150;
+  EXPECT_GT(light, 200);
+}
+
+TEST(Studio, AStoryThatCannotBePlannedShowsWhy) {
+  const std::string story =
+      std::string(CANDELA_SOURCE_DIR) + "/tests/eigenflame/data/bad-clip.story.toml";
+  ASSERT_EQ(
+      studio("builtin:fire " + story, "badstory", "wait 2\ndump " + work("b.txt") + "\nquit\n"), 0)
+      << log_text();
+  const auto d = read_dump(work("b.txt"));
+  EXPECT_EQ(d.at("ok"), "0");
+  EXPECT_NE(
+      d.at("error").find("bad-clip.story.toml: segment[1].clip: expected a clip of the model"),
+      std::string::npos)
+      << d.at("error");
+}
+
+TEST(Studio, ClickingATrackJumpsToThatFrame) {
+  ASSERT_EQ(studio(kFire, "click",
+                   "pause\nframe 50\nwait 2\ndump " + work("c0.txt") +
+                       "\nframe 200\nwait 2\ndump " + work("c1.txt") + "\n"),
+            0)
+      << log_text();
+  const auto at50 = numbers(read_dump(work("c0.txt")).at("pca_marker"));
+  ASSERT_EQ(read_dump(work("c1.txt")).at("model_frame"), "200");
+  // Click where frame 50 was drawn (a tiny offset: a user is never exact),
+  // with real X button events at the window's pixel.
+  const auto pca = numbers(read_dump(work("c0.txt")).at("pca"));
+  const std::string px = std::to_string(static_cast<int>(std::lround(pca[0] + at50[0] + 0.6))) +
+                         " " +
+                         std::to_string(static_cast<int>(std::lround(pca[1] + at50[1] - 0.4)));
+  ASSERT_EQ(studio(kFire, "click2",
+                   "pause\nframe 200\nwait 2\nx-move " + px + "\nwait 1\nx-press " + px +
+                       "\nwait 1\nx-release " + px + "\nwait 2\ndump " + work("c2.txt") + "\n"),
+            0)
+      << log_text();
+  const auto d = read_dump(work("c2.txt"));
+  EXPECT_EQ(d.at("playing"), "0") << "a click pauses on the frame";
+  const auto now = numbers(d.at("pca_marker"));
+  // Frame 50, or a frame drawn on the very same spot.
+  EXPECT_LT(std::hypot(now[0] - at50[0], now[1] - at50[1]), 2.0)
+      << "jumped to frame " << d.at("model_frame");
+  EXPECT_NE(d.at("model_frame"), "200");
+}
+
+TEST(Studio, UndoTakesBackEditsOneAtATime) {
+  ASSERT_EQ(studio(kFire, "undo",
+                   "pause\nset weight 2 1.5\nset hue 100\nwait 1\ndump " + work("u0.txt") +
+                       "\nundo\nwait 1\ndump " + work("u1.txt") + "\nundo\nwait 1\ndump " +
+                       work("u2.txt") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto u0 = read_dump(work("u0.txt")), u1 = read_dump(work("u1.txt")),
+             u2 = read_dump(work("u2.txt"));
+  EXPECT_EQ(u0.at("hue"), "100");
+  EXPECT_EQ(u0.at("undo_depth"), "2");
+  EXPECT_NE(u1.at("hue"), "100") << "the hue edit undone";
+  EXPECT_NE(numbers(u1.at("shown"))[2], numbers(u1.at("base"))[2]) << "the weight edit kept";
+  EXPECT_EQ(numbers(u2.at("shown"))[2], numbers(u2.at("base"))[2]) << "and then undone";
+  EXPECT_EQ(u2.at("undo_depth"), "0");
+}
+
+// Real X events (sent to the window through the X server) take the path a
+// user's input takes: window backend -> X11 platform -> ImGui -> the views.
+TEST(Studio, MouseAndKeysWorkThroughX) {
+  ASSERT_EQ(studio(kFire, "xlayout", "wait 1\ndump " + work("x0.txt") + "\nquit\n"), 0)
+      << log_text();
+  const auto pca = numbers(read_dump(work("x0.txt")).at("pca"));
+  const int cx = static_cast<int>(pca[0] + pca[2] / 2), cy = static_cast<int>(pca[1] + pca[3] / 2);
+  auto at = [](int x, int y) { return std::to_string(x) + " " + std::to_string(y); };
+  std::string s =
+      "pause\nwait 1\nx-move " + at(cx, cy) + "\nwait 1\nx-press " + at(cx, cy) + "\nwait 1\n";
+  for (int i = 1; i <= 4; ++i) s += "x-move " + at(cx + 20 * i, cy - 10 * i) + "\nwait 1\n";
+  s += "x-release " + at(cx + 80, cy - 40) + "\nwait 1\nx-wheel " + at(cx, cy) +
+       " 2\nwait 2\nset weight 2 1.0\nwait 1\ndump " + work("x1.txt") +
+       "\nx-key ctrl+z\nwait 2\nx-key space\nwait 2\ndump " + work("x2.txt") + "\nquit\n";
+  ASSERT_EQ(studio(kFire, "xinput", s), 0) << log_text();
+  const auto d0 = read_dump(work("x0.txt")), d1 = read_dump(work("x1.txt")),
+             d2 = read_dump(work("x2.txt"));
+  // A drag of (+80, -40) pixels turns the view by 0.01 rad a pixel.
+  EXPECT_NEAR(std::stod(d1.at("pca_yaw")) - std::stod(d0.at("pca_yaw")), 0.8, 1e-4);
+  EXPECT_NEAR(std::stod(d1.at("pca_pitch")) - std::stod(d0.at("pca_pitch")), -0.4, 1e-4);
+  EXPECT_NEAR(std::stod(d1.at("pca_zoom")), 1.15 * 1.15, 1e-4) << "two wheel clicks";
+  EXPECT_EQ(d1.at("undo_depth"), "1");
+  EXPECT_EQ(d2.at("undo_depth"), "0") << "Ctrl+Z undid the weight edit";
+  EXPECT_EQ(numbers(d2.at("shown"))[2], numbers(d2.at("base"))[2]);
+  EXPECT_EQ(d1.at("playing"), "0");
+  EXPECT_EQ(d2.at("playing"), "1") << "space plays";
+}
+
+TEST(Studio, TheWindowResizesAndTheLayoutFollows) {
+  ASSERT_EQ(studio(kFire, "resize",
+                   "pause\nframe 40\nresize 1000 600\nwait 6\ndump " + work("z.txt") +
+                       "\nscreenshot " + work("z.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d = read_dump(work("z.txt"));
+  EXPECT_EQ(d.at("window"), "1000 600");
+  const auto img = candela::read_png(work("z.png"), 3);
+  EXPECT_EQ(img.width, 1000);
+  EXPECT_EQ(img.height, 600);
+  const auto pca = numbers(d.at("pca")), fl = numbers(d.at("flame_image"));
+  EXPECT_LE(pca[0] + pca[2], 1000);
+  EXPECT_LE(pca[1] + pca[3], 600);
+  EXPECT_LE(fl[1] + fl[3], 600);
+  // The flame is drawn in its resized view: bright pixels inside the image.
+  const auto lum = region(img, fl, static_cast<int>(fl[2]), static_cast<int>(fl[3]));
+  int bright = 0;
+  for (double v : lum) bright += v > 100;
+  EXPECT_GT(bright, 200);
+}
+
+TEST(Studio, AStoryPlaysItsPlannedFrames) {
+  // The same planner as `candela-tool story`: as many frames as it prints.
+  ASSERT_EQ(run(std::string(CANDELA_TOOL) + " story builtin:fire-tour --no-render"), 0)
+      << log_text();
+  const std::string text = log_text();
+  const size_t at = text.find("<built-in story fire-tour>: ");
+  ASSERT_NE(at, std::string::npos) << text;
+  const int planned = std::stoi(text.substr(at + 28));
+  ASSERT_EQ(
+      studio("builtin:fire builtin:fire-tour", "story",
+             "wait 30\ndump " + work("t.txt") + "\nsave-scene " + work("story.toml") + "\nquit\n"),
+      0)
+      << log_text();
+  const auto d = read_dump(work("t.txt"));
+  ASSERT_EQ(d.at("ok"), "1") << d.at("error");
+  EXPECT_EQ(std::stoi(d.at("frames")), planned);
+  EXPECT_GT(std::stoi(d.at("frame")), 5) << "it plays";
+  // Saved as a scene, the element plays the story (no model key: the story names it).
+  ASSERT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + work("story.toml")), 0)
+      << log_text();
+  std::ifstream in(work("story.toml"));
+  std::stringstream saved;
+  saved << in.rdbuf();
+  EXPECT_NE(saved.str().find("story = \"builtin:fire-tour\"\n"), std::string::npos) << saved.str();
+  EXPECT_EQ(saved.str().find("\nmodel = "), std::string::npos) << saved.str();
+}
+
+}  // namespace

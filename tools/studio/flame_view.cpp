@@ -1,0 +1,126 @@
+#include "flame_view.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "elements/eigenflame/eigen_renderer.h"
+#include "elements/eigenflame/eigenflame.h"
+#include "gl/math.h"
+#include "model/flame_model.h"
+
+namespace candela::studio {
+namespace {
+
+ImageStack stack_of(const model::QuantisedImages& q) {
+  ImageStack s;
+  s.u16 = q.dtype == model::DType::kU16;
+  s.count = q.count;
+  s.width = q.width;
+  s.height = q.height;
+  s.data = q.data;
+  s.scale = q.scale;
+  s.offset = q.offset;
+  return s;
+}
+
+Mat4 ortho(float l, float r, float b, float t) {
+  Mat4 m;
+  m.m[0] = 2 / (r - l);
+  m.m[5] = 2 / (t - b);
+  m.m[10] = -1.0f / 10;  // z in [-10, 10]
+  m.m[12] = -(r + l) / (r - l);
+  m.m[13] = -(t + b) / (t - b);
+  return m;
+}
+
+constexpr float kPad = 0.15f;  // room for the glow around the image, image heights
+
+}  // namespace
+
+FlameView::FlameView(const EigenModel& model)
+    : model_(model), weights_(static_cast<size_t>(model.model->components()), 0.0f) {}
+
+FlameView::~FlameView() = default;
+
+void FlameView::render(std::span<const float> weights, const Look& look, int w, int h) {
+  const model::FlameModel& m = *model_.model;
+  w = std::max(w, 16);
+  h = std::max(h, 16);
+  // Nothing changed (paused, or a model frame held between two UI frames):
+  // the texture already shows it.
+  const size_t n = std::min(weights.size(), weights_.size());
+  const bool same_weights =
+      std::equal(weights.begin(), weights.begin() + static_cast<ptrdiff_t>(n), weights_.begin()) &&
+      std::all_of(weights_.begin() + static_cast<ptrdiff_t>(n), weights_.end(),
+                  [](float v) { return v == 0; });
+  if (renderer_ && have_look_ && look == look_ && w == w_ && h == h_ && same_weights) return;
+  if (!renderer_ || !have_look_ || !(look == look_)) {
+    FlameLookSettings s;
+    if (look.transfer.size() >= 2) {
+      std::vector<Vec3> stops;
+      for (const auto& c : look.transfer) stops.push_back({c[0], c[1], c[2]});
+      s.ramp = transfer_ramp(stops, m.colour.black_level);
+    } else {
+      s.ramp = hls_ramp(look.hue, look.saturation, m.colour.black_level);
+    }
+    s.brightness = look.brightness;
+    s.glow_radius = std::max(0.02f, look.glow_radius);  // as the element clamps the model's
+    s.glow_strength = look.glow_strength;
+    renderer_.reset();  // first: the shared batch is laid out afresh for the new one
+    renderer_ =
+        std::make_unique<EigenRenderer>(stack_of(m.mean), stack_of(m.eigen), StackLayout::kPacked,
+                                        EigenReconstructor::kMaxComponents, s, weights_);
+    look_ = look;
+    have_look_ = true;
+  }
+  if (w != w_ || h != h_) {
+    colour_ = make_texture();
+    glBindTexture(GL_TEXTURE_2D, colour_.get());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    fbo_ = make_framebuffer();
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_.get(), 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw RuntimeError("studio: the flame view's framebuffer is incomplete");
+    w_ = w;
+    h_ = h;
+  }
+  std::copy_n(weights.begin(), n, weights_.begin());
+  std::fill(weights_.begin() + static_cast<ptrdiff_t>(n), weights_.end(), 0.0f);
+
+  // The image (aspect a, height 1, bottom centre at the origin) and its glow
+  // margin, fitted into the view keeping the aspect.
+  const float a = static_cast<float>(m.width()) / m.height();
+  float half_w = a / 2 + kPad, lo = -kPad, hi = 1 + kPad;
+  const float view_aspect = static_cast<float>(w) / h;
+  if (2 * half_w / (hi - lo) < view_aspect) {
+    half_w = (hi - lo) * view_aspect / 2;
+  } else {
+    const float extra = (2 * half_w / view_aspect - (hi - lo)) / 2;
+    lo -= extra;
+    hi += extra;
+  }
+  const float px = w / (2 * half_w);  // pixels per image height
+  image_ = {static_cast<int>(std::lround((half_w - a / 2) * px)),
+            static_cast<int>(std::lround((hi - 1) * px)), static_cast<int>(std::lround(a * px)),
+            static_cast<int>(std::lround(px))};
+
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+  glViewport(0, 0, w, h);
+  glClearColor(0, 0, 0, 1);  // alpha stays 1 under the additive flame: the UI shows it opaque
+  glClear(GL_COLOR_BUFFER_BIT);
+  renderer_->prepare(++frame_, w, h);
+  FlamePose pose;
+  pose.origin = {0, 0, 0};
+  pose.height = 1;
+  const Mat4 view = Mat4::identity();
+  renderer_->composite(view, ortho(-half_w, half_w, lo, hi) * view, pose);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+}  // namespace candela::studio

@@ -1,0 +1,289 @@
+#include "panels.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+#include "elements/eigenflame/eigenflame.h"
+#include "model/flame_model.h"
+#include "pca_view.h"
+#include "reports_view.h"
+#include "session.h"
+#include "x11_platform.h"
+
+namespace candela::studio {
+namespace {
+
+// The panes tile the window, so none draws a background: the frame is cleared
+// to the panes' colour (kPaneColour) once, which on llvmpipe saves blending
+// the whole window again (fragment work is most of a frame there).
+constexpr ImGuiWindowFlags kFixed = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                    ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
+                                    ImGuiWindowFlags_NoBringToFrontOnFocus |
+                                    ImGuiWindowFlags_NoBackground;
+
+void place(ImVec2 pos, ImVec2 size) {
+  ImGui::SetNextWindowPos(pos, ImGuiCond_Always);
+  ImGui::SetNextWindowSize(size, ImGuiCond_Always);
+}
+
+PixelRect rect_of(ImVec2 pos, ImVec2 size) {
+  return {static_cast<int>(pos.x), static_cast<int>(pos.y), static_cast<int>(size.x),
+          static_cast<int>(size.y)};
+}
+
+// The transfer function: a ramp preview over its evenly spaced colour stops,
+// each stop a handle (click: a colour picker), stops added or removed at the end.
+template <typename UndoPoint>
+bool transfer_editor(Look& look, UndoPoint& undo_point, Session& s) {
+  bool changed = false;
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const ImVec2 at = ImGui::GetCursorScreenPos();
+  const float w = ImGui::GetContentRegionAvail().x, h = 14;
+  const size_t n = look.transfer.size();
+  auto col = [](const std::array<float, 3>& c) {
+    return ImGui::ColorConvertFloat4ToU32(ImVec4(c[0], c[1], c[2], 1));
+  };
+  for (size_t i = 0; i + 1 < n; ++i) {
+    const float x0 = at.x + w * static_cast<float>(i) / static_cast<float>(n - 1);
+    const float x1 = at.x + w * static_cast<float>(i + 1) / static_cast<float>(n - 1);
+    dl->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + h), col(look.transfer[i]),
+                                col(look.transfer[i + 1]), col(look.transfer[i + 1]),
+                                col(look.transfer[i]));
+  }
+  ImGui::Dummy(ImVec2(w, h));
+  for (size_t i = 0; i < n; ++i) {
+    char id[32];
+    std::snprintf(id, sizeof id, "##stop%u", static_cast<unsigned>(i));
+    if (i > 0) ImGui::SameLine();
+    changed |= ImGui::ColorEdit3(id, look.transfer[i].data(), ImGuiColorEditFlags_NoInputs);
+    undo_point();
+  }
+  ImGui::SameLine();
+  if (n < Look::kMaxStops && ImGui::SmallButton("+")) {
+    s.begin_edit();
+    look.transfer.push_back(look.transfer.back());
+    changed = true;
+  }
+  ImGui::SameLine();
+  if (n > 2 && ImGui::SmallButton("-")) {
+    s.begin_edit();
+    look.transfer.pop_back();
+    changed = true;
+  }
+  return changed;
+}
+
+}  // namespace
+
+Layout Layout::of(int width, int height) {
+  Layout l;
+  const float w = static_cast<float>(std::max(width, 200));
+  const float h = static_cast<float>(std::max(height, 150));
+  l.title_h = ImGui::GetFontSize() + 2 * ImGui::GetStyle().FramePadding.y;
+  const float cw = std::min(360.0f, std::max(240.0f, w * 0.28f));
+  const float rest = w - cw;
+  l.controls_pos = {0, 0};
+  l.controls_size = {cw, h};
+  l.flame_pos = {cw, 0};
+  l.flame_size = {std::floor(rest * 0.45f), h};
+  l.pca_pos = {cw + l.flame_size.x, 0};
+  l.pca_size = {rest - l.flame_size.x, h};
+  return l;
+}
+
+Panels::Panels() { std::snprintf(path_buf_, sizeof path_buf_, "%s", scene_path.c_str()); }
+
+bool save_scene_reporting(Session& s, const std::string& path) {
+  try {
+    s.save_scene(path);
+    s.status = "saved " + path;
+    return true;
+  } catch (const std::exception& e) {
+    s.status = e.what();
+    return false;
+  }
+}
+
+void Panels::draw(Session& s, FlameView* flame, PcaView& pca, ReportsView& reports,
+                  double frame_ms) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const Layout l =
+      Layout::of(static_cast<int>(io.DisplaySize.x), static_cast<int>(io.DisplaySize.y));
+  if (io.KeyCtrl && ImGui::IsKeyPressed(ImGuiKey_Z, false) && !io.WantTextInput) {
+    if (s.undo()) s.status = "undone";
+  }
+  if (io.KeyCtrl && ImGui::IsKeyPressed(letter_key('q'), false)) quit_ = true;
+  // Space plays/pauses, the arrows step (not while a text field has the keys).
+  if (s.ok() && !io.WantTextInput && !io.KeyCtrl) {
+    if (ImGui::IsKeyPressed(ImGuiKey_Space, false)) s.playing = !s.playing;
+    if (ImGui::IsKeyPressed(ImGuiKey_LeftArrow, true)) s.step(-1);
+    if (ImGui::IsKeyPressed(ImGuiKey_RightArrow, true)) s.step(1);
+  }
+
+  if (!s.ok()) {
+    draw_error(s, l);
+  } else {
+    place(l.controls_pos, l.controls_size);
+    ImGui::Begin("Studio", nullptr, kFixed);
+    draw_controls(s, reports, frame_ms);
+    ImGui::End();
+  }
+
+  // The flame, as the runtime renders it.
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
+  place(l.flame_pos, l.flame_size);
+  ImGui::Begin("Flame", nullptr, kFixed | ImGuiWindowFlags_NoScrollbar);
+  {
+    const ImVec2 at = ImGui::GetCursorScreenPos();
+    if (flame && flame->texture()) {
+      const ImVec2 sz(static_cast<float>(flame->width()), static_cast<float>(flame->height()));
+      ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(flame->texture())), sz,
+                   ImVec2(0, 1), ImVec2(1, 0));
+      const PixelRect r = flame->image_rect();
+      drawn_.flame_image = {static_cast<int>(at.x) + r.x, static_cast<int>(at.y) + r.y, r.w, r.h};
+      drawn_.flame_view = rect_of(at, sz);
+    }
+  }
+  ImGui::End();
+
+  // The PCA tracks.
+  place(l.pca_pos, l.pca_size);
+  ImGui::Begin("PCA tracks: w0, w1, w2 (drag: rotate, wheel: zoom, click: jump)", nullptr,
+               kFixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  {
+    const ImVec2 at = ImGui::GetCursorScreenPos();
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const ImVec2 sz(std::max(avail.x, 1.0f), std::max(avail.y, 1.0f));
+    ImGui::InvisibleButton("pca", sz);
+    if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 2.0f))
+      pca.rotate(io.MouseDelta.x, io.MouseDelta.y);
+    if (ImGui::IsItemHovered() && io.MouseWheel != 0) pca.zoom(io.MouseWheel);
+    if (ImGui::IsItemDeactivated() && io.MouseDragMaxDistanceSqr[0] < 4.0f) {
+      const int f = pca.pick(ImVec2(io.MousePos.x - at.x, io.MousePos.y - at.y));
+      if (f >= 0 && s.ok()) {
+        s.seek_model_frame(f);
+        s.playing = false;
+      }
+    }
+    pca.draw(ImGui::GetWindowDrawList(), at, sz, s);
+    drawn_.pca = rect_of(at, sz);
+  }
+  ImGui::End();
+  ImGui::PopStyleVar();
+}
+
+void Panels::draw_error(const Session& s, const Layout& l) {
+  place(l.controls_pos, l.controls_size);
+  ImGui::Begin("Studio", nullptr, kFixed);
+  ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1),
+                     s.story_failed() ? "Cannot play the story" : "Cannot open the model");
+  ImGui::Separator();
+  ImGui::PushTextWrapPos(0);
+  ImGui::TextUnformatted(s.error().c_str());
+  ImGui::Spacing();
+  ImGui::TextDisabled(
+      s.story_failed() ? "Fix the story (candela-tool story STORY --no-render) and open it again."
+                       : "Fix the file (candela-tool inspect MODEL) and open it again.");
+  ImGui::PopTextWrapPos();
+  ImGui::End();
+}
+
+void Panels::draw_controls(Session& s, ReportsView& reports, double frame_ms) {
+  const model::FlameModel& m = *s.model().model;
+  const Edits before = s.edits();  // what a widget's gesture undoes to
+  auto undo_point = [&] {
+    if (ImGui::IsItemActivated()) s.begin_edit(before);
+  };
+
+  ImGui::TextUnformatted(s.model_name().c_str());
+  ImGui::Text("%dx%d, %d components, %d frames, %zu clips", m.width(), m.height(), m.components(),
+              m.frames(), m.clips.size());
+  if (s.has_story()) ImGui::Text("story %s: %d frames", s.story_name().c_str(), s.frames());
+  ImGui::Text("%.1f ms a frame", frame_ms);
+
+  if (ImGui::CollapsingHeader("Playback", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (ImGui::Button(s.playing ? "Pause" : "Play")) s.playing = !s.playing;
+    ImGui::SameLine();
+    if (ImGui::ArrowButton("back", ImGuiDir_Left)) s.step(-1);
+    ImGui::SameLine();
+    if (ImGui::ArrowButton("forward", ImGuiDir_Right)) s.step(1);
+    ImGui::SameLine();
+    const int mf = s.model_frame(s.frame());
+    const int clip = s.clip_of_frame(mf);
+    ImGui::Text("%s", clip >= 0 ? m.clips[static_cast<size_t>(clip)].name.c_str() : "(transition)");
+    int f = s.frame();
+    if (ImGui::SliderInt("frame", &f, 0, std::max(0, s.frames() - 1))) {
+      s.seek(f);
+      s.playing = false;
+    }
+    ImGui::SliderFloat("speed", &s.speed, 0.05f, 8.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
+    ImGui::Text("model frame %d", mf);
+  }
+
+  if (ImGui::CollapsingHeader("Colour", ImGuiTreeNodeFlags_DefaultOpen)) {
+    Look look = s.edits().look;
+    bool changed = false;
+    bool use_transfer = look.transfer.size() >= 2;
+    if (ImGui::RadioButton("HLS", !use_transfer) && use_transfer) {
+      s.begin_edit();
+      look.transfer.clear();
+      changed = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::RadioButton("transfer function", use_transfer) && !use_transfer) {
+      s.begin_edit();
+      look.transfer = {{0, 0, 0}, {0.54f, 0.094f, 0}, {1, 0.5f, 0.125f}, {1, 0.94f, 0.75f}};
+      changed = true;
+    }
+    if (look.transfer.size() >= 2) {
+      changed |= transfer_editor(look, undo_point, s);
+    } else {
+      changed |= ImGui::SliderFloat("hue", &look.hue, 0, 360, "%.0f deg");
+      undo_point();
+      changed |= ImGui::SliderFloat("saturation", &look.saturation, 0, 1);
+      undo_point();
+    }
+    changed |= ImGui::SliderFloat("brightness", &look.brightness, 0, 4);
+    undo_point();
+    changed |= ImGui::SliderFloat("glow radius", &look.glow_radius, 0, 0.5f);
+    undo_point();
+    changed |= ImGui::SliderFloat("glow strength", &look.glow_strength, 0, 4);
+    undo_point();
+    if (changed) s.set_look(look);
+  }
+
+  if (ImGui::CollapsingHeader("Save as scene", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::InputText("file", path_buf_, sizeof path_buf_);
+    if (ImGui::Button("Save scene")) {
+      scene_path = path_buf_;
+      save_scene_reporting(s, scene_path);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Undo (Ctrl+Z)") && s.undo()) s.status = "undone";
+    if (!s.status.empty()) ImGui::TextWrapped("%s", s.status.c_str());
+  }
+
+  if (open_reports) ImGui::SetNextItemOpen(true);
+  open_reports = false;
+  if (ImGui::CollapsingHeader("Reports")) reports.draw(ImGui::GetContentRegionAvail().x);
+
+  if (ImGui::CollapsingHeader("Weights", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (ImGui::Button("Reset weights")) s.reset_edits();
+    float detail = s.edits().weights.detail_scale;
+    if (ImGui::SliderFloat("detail scale", &detail, 0, 4, "x%.2f")) s.set_detail_scale(detail);
+    undo_point();
+    ImGui::TextDisabled("offsets in standard deviations of each weight");
+    ImGui::BeginChild("weights", ImVec2(0, 0), false);
+    for (int k = 0; k < s.shape_weights(); ++k) {
+      float v = s.edits().weights.offset_sigma[static_cast<size_t>(k)];
+      char label[16];
+      std::snprintf(label, sizeof label, "w%d", k);
+      if (ImGui::SliderFloat(label, &v, -5, 5, "%+.2f")) s.set_offset(k, v);
+      undo_point();
+    }
+    ImGui::EndChild();
+  }
+}
+
+}  // namespace candela::studio

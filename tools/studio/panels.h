@@ -1,0 +1,58 @@
+// The studio's UI (Dear ImGui): the fixed layout of its three windows
+// (controls, flame, PCA tracks), the controls themselves (playback, weight
+// sliders, colour, save as scene, undo), and the error window shown instead
+// when the model cannot be opened. Every edit goes through Session's setters,
+// as the scripted input does.
+#pragma once
+
+#include <imgui.h>
+
+#include <string>
+
+#include "flame_view.h"
+
+namespace candela::studio {
+
+class Session;
+class PcaView;
+class ReportsView;
+
+// What the frame is cleared to: the panes' background (they draw none).
+inline constexpr float kPaneColour[3] = {0.06f, 0.06f, 0.06f};
+
+struct Layout {
+  ImVec2 controls_pos, controls_size, flame_pos, flame_size, pca_pos, pca_size;
+  float title_h = 0;  // each window's title bar
+  static Layout of(int width, int height);
+  // The flame window's content (where its texture goes), window pixels.
+  ImVec2 flame_content_size() const { return {flame_size.x, flame_size.y - title_h}; }
+};
+
+// Where things were drawn this frame (window pixels, top-left origin).
+struct DrawnRects {
+  PixelRect flame_image, flame_view, pca;
+};
+
+class Panels {
+ public:
+  Panels();
+  // Builds this frame's UI. `flame` may be null (no model).
+  void draw(Session& session, FlameView* flame, PcaView& pca, ReportsView& reports,
+            double frame_ms);
+  const DrawnRects& drawn() const { return drawn_; }
+  bool quit_requested() const { return quit_; }
+  std::string scene_path = "studio-scene.toml";
+  bool open_reports = false;  // opens the Reports section at the next draw
+
+ private:
+  void draw_controls(Session& s, ReportsView& reports, double frame_ms);
+  void draw_error(const Session& s, const Layout& l);
+  DrawnRects drawn_;
+  bool quit_ = false;
+  char path_buf_[512] = {};
+};
+
+// The save-as-scene action (UI button and script): writes and reports.
+bool save_scene_reporting(Session& s, const std::string& path);
+
+}  // namespace candela::studio

@@ -1,0 +1,208 @@
+#include "script.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+#include "panels.h"
+#include "pca_view.h"
+#include "session.h"
+
+namespace candela::studio {
+namespace {
+
+bool number(const std::string& s, double& out) {
+  if (s.empty()) return false;
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return end && *end == '\0';
+}
+
+// Arity and number checks, so a typo fails at load, not halfway.
+std::string check(const std::vector<std::string>& w) {
+  const std::string& c = w[0];
+  auto nums = [&](size_t from, size_t count) -> std::string {
+    if (w.size() != from + count)
+      return "expected " + std::to_string(from + count - 1) + " argument(s) after '" + c + "'";
+    for (size_t i = from; i < w.size(); ++i) {
+      double v;
+      if (!number(w[i], v)) return "expected a number, got '" + w[i] + "'";
+    }
+    return {};
+  };
+  if (c == "pause" || c == "play" || c == "reset" || c == "undo" || c == "quit")
+    return w.size() == 1 ? "" : "'" + c + "' takes no arguments";
+  if (c == "wait" || c == "frame" || c == "speed") return nums(1, 1);
+  if (c == "step") return w.size() == 1 ? "" : nums(1, 1);
+  if (c == "set") {
+    if (w.size() >= 2 && w[1] == "weight") return nums(2, 2);
+    if (w.size() >= 2 && w[1] == "transfer") {
+      if (w.size() == 3 && w[2] == "off") return {};
+      if (w.size() < 4 || w.size() > 2 + 8)
+        return "expected set transfer off | 2 to 8 #rrggbb stops";
+      for (size_t i = 2; i < w.size(); ++i) {
+        unsigned r, g, b;
+        if (w[i].size() != 7 || std::sscanf(w[i].c_str(), "#%2x%2x%2x", &r, &g, &b) != 3)
+          return "expected a colour stop #rrggbb, got '" + w[i] + "'";
+      }
+      return {};
+    }
+    static const char* keys[] = {"detail",     "hue",         "saturation",
+                                 "brightness", "glow_radius", "glow_strength"};
+    for (const char* k : keys)
+      if (w.size() >= 2 && w[1] == k) return nums(2, 1);
+    return "expected set weight|detail|hue|saturation|brightness|glow_radius|glow_strength";
+  }
+  if (c == "drag" || c == "click") {
+    if (w.size() < 2 || w[1] != "pca") return "expected '" + c + " pca X Y'";
+    return nums(2, 2);
+  }
+  if (c == "show") return w.size() == 2 && w[1] == "reports" ? "" : "expected 'show reports'";
+  if (c == "resize" || c == "x-press" || c == "x-release" || c == "x-move") return nums(1, 2);
+  if (c == "x-wheel") return nums(1, 3);
+  if (c == "x-key") return w.size() == 2 ? "" : "expected 'x-key [ctrl+]KEYSYM'";
+  if (c == "zoom") {
+    if (w.size() < 2 || w[1] != "pca") return "expected 'zoom pca STEPS'";
+    return nums(2, 1);
+  }
+  if (c == "screenshot" || c == "dump" || c == "save-scene")
+    return w.size() == 2 ? "" : "expected '" + c + " FILE'";
+  return "unknown command '" + c + "'";
+}
+
+float f(const std::string& s) { return std::strtof(s.c_str(), nullptr); }
+
+}  // namespace
+
+Script Script::load(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw RuntimeError(path + ": cannot read the script");
+  Script s;
+  s.file_ = path;
+  std::string text;
+  for (int n = 1; std::getline(in, text); ++n) {
+    const size_t first = text.find_first_not_of(" \t");
+    if (first != std::string::npos && text[first] == '#') continue;  // a comment line
+    std::istringstream words(text);
+    ScriptCommand c;
+    c.line = n;
+    for (std::string w; words >> w;) c.words.push_back(w);
+    if (c.words.empty()) continue;
+    const std::string why = check(c.words);
+    if (!why.empty()) throw RuntimeError(path + ":" + std::to_string(n) + ": " + why);
+    s.commands_.push_back(std::move(c));
+  }
+  return s;
+}
+
+ScriptFrame Script::run_frame(Session& s, PcaView& pca) {
+  ScriptFrame out;
+  for (auto& up : key_ups_) out.x_input.push_back(up);
+  key_ups_.clear();
+  if (wait_ > 0) {
+    --wait_;
+    return out;
+  }
+  while (at_ < commands_.size()) {
+    const ScriptCommand& c = commands_[at_++];
+    const auto& w = c.words;
+    const std::string& cmd = w[0];
+    if (cmd == "wait") {
+      wait_ = std::max(0, static_cast<int>(f(w[1])) - 1);
+      if (static_cast<int>(f(w[1])) > 0) break;
+    } else if (cmd == "pause") {
+      s.playing = false;
+    } else if (cmd == "play") {
+      s.playing = true;
+    } else if (cmd == "step") {
+      s.step(w.size() > 1 ? static_cast<int>(f(w[1])) : 1);
+    } else if (cmd == "frame") {
+      s.seek(static_cast<int>(f(w[1])));
+    } else if (cmd == "speed") {
+      s.speed = f(w[1]);
+    } else if (cmd == "set") {
+      s.begin_edit();
+      if (w[1] == "weight") {
+        s.set_offset(static_cast<int>(f(w[2])), f(w[3]));
+      } else if (w[1] == "detail") {
+        s.set_detail_scale(f(w[2]));
+      } else {
+        Look l = s.edits().look;
+        const float v = f(w[2]);
+        if (w[1] == "hue") l.hue = v;
+        if (w[1] == "saturation") l.saturation = v;
+        if (w[1] == "brightness") l.brightness = v;
+        if (w[1] == "glow_radius") l.glow_radius = v;
+        if (w[1] == "glow_strength") l.glow_strength = v;
+        if (w[1] == "transfer") {
+          l.transfer.clear();
+          for (size_t i = 2; i < w.size() && w[2] != "off"; ++i) {
+            unsigned r = 0, g = 0, b = 0;
+            std::sscanf(w[i].c_str(), "#%2x%2x%2x", &r, &g, &b);
+            l.transfer.push_back({r / 255.0f, g / 255.0f, b / 255.0f});
+          }
+        }
+        s.set_look(l);
+      }
+    } else if (cmd == "reset") {
+      s.reset_edits();
+    } else if (cmd == "undo") {
+      s.undo();
+    } else if (cmd == "drag") {
+      pca.rotate(f(w[2]), f(w[3]));
+    } else if (cmd == "show") {
+      out.show_reports = true;
+    } else if (cmd == "resize") {
+      out.resize_w = std::clamp(static_cast<int>(f(w[1])), 200, 8192);
+      out.resize_h = std::clamp(static_cast<int>(f(w[2])), 150, 8192);
+    } else if (cmd == "x-press" || cmd == "x-release" || cmd == "x-move" || cmd == "x-wheel") {
+      ScriptFrame::XInput in;
+      in.kind = cmd == "x-press"     ? ScriptFrame::XInput::kPress
+                : cmd == "x-release" ? ScriptFrame::XInput::kRelease
+                : cmd == "x-move"    ? ScriptFrame::XInput::kMove
+                                     : ScriptFrame::XInput::kWheel;
+      in.x = static_cast<int>(f(w[1]));
+      in.y = static_cast<int>(f(w[2]));
+      if (w.size() > 3) in.steps = static_cast<int>(f(w[3]));
+      out.x_input.push_back(in);
+    } else if (cmd == "x-key") {
+      ScriptFrame::XInput in;
+      in.kind = ScriptFrame::XInput::kKey;
+      in.key = w[1];
+      if (in.key.rfind("ctrl+", 0) == 0) {
+        in.ctrl = true;
+        in.key = in.key.substr(5);
+      }
+      out.x_input.push_back(in);
+      in.kind = ScriptFrame::XInput::kKeyUp;
+      key_ups_.push_back(in);
+      break;  // the release goes with the next frame
+    } else if (cmd == "zoom") {
+      pca.zoom(f(w[2]));
+    } else if (cmd == "click") {
+      const int mf = pca.pick(ImVec2(f(w[2]), f(w[3])));
+      if (mf >= 0) {
+        s.seek_model_frame(mf);
+        s.playing = false;
+      }
+    } else if (cmd == "screenshot") {  // of this frame: later commands wait for the next one
+      out.screenshots.push_back(w[1]);
+      break;
+    } else if (cmd == "dump") {
+      out.dumps.push_back(w[1]);
+      break;
+    } else if (cmd == "save-scene") {
+      if (!save_scene_reporting(s, w[1]))
+        throw RuntimeError(file_ + ":" + std::to_string(c.line) + ": save-scene: " + s.status);
+    } else if (cmd == "quit") {
+      out.quit = true;
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace candela::studio

@@ -1,0 +1,275 @@
+#include "session.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+#include "elements/eigenflame/eigenflame.h"
+#include "model/flame_model.h"
+#include "story/story_file.h"
+#include "story/story_plan.h"
+
+namespace candela::studio {
+namespace {
+
+constexpr size_t kUndoDepth = 256;
+
+std::shared_ptr<const EigenModel> open_model(const std::string& name) {
+  if (name.rfind("builtin:", 0) == 0) return builtin_eigen_model(name.substr(8));
+  return load_eigen_model(name);
+}
+
+// A name as a scene anywhere can find it: builtin:NAME as it is, a file absolute.
+std::string scene_path(const std::string& name) {
+  if (name.rfind("builtin:", 0) == 0) return name;
+  return std::filesystem::absolute(name).lexically_normal().string();
+}
+
+std::string toml_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  std::string s = buf;
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
+}  // namespace
+
+Session::Session(std::string model, std::string story)
+    : model_name_(std::move(model)), story_name_(std::move(story)) {
+  try {
+    model_ = open_model(model_name_);
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    error_ = what.find(model_name_) == std::string::npos ? model_name_ + ": " + what : what;
+    return;
+  }
+  const model::FlameModel& m = *model_->model;
+  if (!story_name_.empty()) {
+    try {
+      const story::StoryDesc desc = story::open_story(story_name_);
+      const std::string named = story::story_model_path(desc);
+      if (named != model_name_)
+        status = "the story names " + named + "; planned against " + model_name_ +
+                 " (a saved scene plays the story's own model)";
+      // The runtime always loops a story (through the first segment's transition).
+      plan_ = std::make_unique<story::StoryPlan>(story::plan_story(desc, m, desc.seed, true));
+    } catch (const std::exception& e) {
+      const std::string what = e.what();
+      error_ = what.find(story_name_) == std::string::npos ? story_name_ + ": " + what : what;
+      story_failed_ = true;
+      model_.reset();
+      return;
+    }
+  }
+  // Each weight's spread over the model's frames: the sliders' unit.
+  const int e = m.components(), f = m.frames();
+  sigma_.assign(static_cast<size_t>(e), 0.0f);
+  for (int k = 0; k < e; ++k) {
+    double s = 0, s2 = 0;
+    for (int i = 0; i < f; ++i) {
+      const double w = m.weights_of(i)[static_cast<size_t>(k)];
+      s += w;
+      s2 += w * w;
+    }
+    const double mean = f > 0 ? s / f : 0;
+    sigma_[static_cast<size_t>(k)] =
+        static_cast<float>(std::sqrt(std::max(0.0, f > 0 ? s2 / f - mean * mean : 0.0)));
+  }
+  base_.assign(static_cast<size_t>(e), 0.0f);
+  shown_ = base_;
+  edits_.look.hue = m.colour.hue;
+  edits_.look.saturation = m.colour.saturation;
+  edits_.look.glow_radius = std::max(0.02f, m.colour.glow_radius);
+  edits_.look.glow_strength = m.colour.glow_strength;
+  update_shown();
+}
+
+Session::~Session() = default;
+
+int Session::frames() const {
+  if (!model_) return 0;
+  return plan_ ? plan_->frames() : model_->model->frames();
+}
+
+int Session::model_frame(int i) const {
+  if (!model_ || frames() == 0) return -1;
+  i = ((i % frames()) + frames()) % frames();
+  return plan_ ? plan_->model_frame(i) : i;
+}
+
+int Session::clip_of_frame(int f) const {
+  if (!model_ || f < 0) return -1;
+  return model_->model->clip_of(f);
+}
+
+double Session::fps() const {
+  if (!model_) return 30;
+  if (plan_) return plan_->fps();
+  const auto& clips = model_->model->clips;
+  return clips.empty() ? 30.0 : clips.front().fps;
+}
+
+int Session::shape_weights() const {
+  return ok() ? std::min(WeightEdits::kShapeWeights, model_->model->components()) : 0;
+}
+
+void Session::seek(int frame) {
+  if (frames() == 0) return;
+  pos_ = ((frame % frames()) + frames()) % frames();
+  update_shown();
+}
+
+void Session::step(int n) {
+  playing = false;
+  seek(this->frame() + n);
+}
+
+void Session::seek_model_frame(int mf) {
+  for (int i = 0; i < frames(); ++i)
+    if (model_frame(i) == mf) {
+      seek(i);
+      return;
+    }
+}
+
+void Session::advance(double seconds) {
+  if (!ok()) return;
+  if (playing && frames() > 0) {
+    pos_ += seconds * fps() * std::clamp(speed, 0.05f, 8.0f);
+    pos_ = std::fmod(pos_, static_cast<double>(frames()));
+    if (pos_ < 0) pos_ += frames();
+  }
+  update_shown();
+}
+
+void Session::update_shown() {
+  if (!ok()) return;
+  const int e = model_->model->components();
+  const int i = frame(), j = (i + 1) % frames();
+  const float* a = plan_ ? plan_->weights_of(i) : model_->model->weights_of(i).data();
+  const float* b = plan_ ? plan_->weights_of(j) : model_->model->weights_of(j).data();
+  const double phase = pos_ - i;
+  const float t = static_cast<float>(std::clamp((phase - 0.75) / 0.25, 0.0, 1.0));
+  const int ne = plan_ ? std::min(e, plan_->components()) : e;
+  for (int k = 0; k < e; ++k) {
+    const size_t u = static_cast<size_t>(k);
+    base_[u] = k < ne ? a[k] + (b[k] - a[k]) * t : 0.0f;
+    shown_[u] = k < WeightEdits::kShapeWeights
+                    ? base_[u] + edits_.weights.offset_sigma[u] * sigma_[u]
+                    : base_[u] * edits_.weights.detail_scale;
+  }
+}
+
+void Session::begin_edit(const Edits& before) {
+  if (!undo_.empty() && undo_.back() == before) return;
+  undo_.push_back(before);
+  if (undo_.size() > kUndoDepth) undo_.erase(undo_.begin());
+}
+
+void Session::set_offset(int k, float sigmas) {
+  if (k < 0 || k >= shape_weights()) return;
+  edits_.weights.offset_sigma[static_cast<size_t>(k)] = std::clamp(sigmas, -5.0f, 5.0f);
+  update_shown();
+}
+
+void Session::set_detail_scale(float s) {
+  edits_.weights.detail_scale = std::clamp(s, 0.0f, 4.0f);
+  update_shown();
+}
+
+void Session::set_look(const Look& l) {
+  edits_.look.hue = std::clamp(l.hue, 0.0f, 360.0f);
+  edits_.look.saturation = std::clamp(l.saturation, 0.0f, 1.0f);
+  edits_.look.brightness = std::clamp(l.brightness, 0.0f, 16.0f);
+  edits_.look.glow_radius = std::clamp(l.glow_radius, 0.0f, 1.0f);
+  edits_.look.glow_strength = std::clamp(l.glow_strength, 0.0f, 8.0f);
+  edits_.look.transfer = l.transfer;
+  if (edits_.look.transfer.size() > Look::kMaxStops) edits_.look.transfer.resize(Look::kMaxStops);
+  if (edits_.look.transfer.size() == 1) edits_.look.transfer.clear();
+  for (auto& c : edits_.look.transfer)
+    for (float& v : c) v = std::clamp(v, 0.0f, 1.0f);
+}
+
+void Session::reset_edits() {
+  begin_edit();
+  edits_.weights = WeightEdits{};
+  update_shown();
+}
+
+bool Session::undo() {
+  if (undo_.empty()) return false;
+  edits_ = undo_.back();
+  undo_.pop_back();
+  update_shown();
+  return true;
+}
+
+std::string Session::scene_text() const {
+  const Look& l = edits_.look;
+  std::string s;
+  s += "# Written by candela-tool studio (" + model_name_ +
+       (story_name_.empty() ? "" : ", story " + story_name_) + ").\n";
+  s += "# candela --scene THIS_FILE\nseed = 1\n\n[background]\ncolor = \"#000000\"\n\n";
+  s += "[camera]\nposition = [0.0, 0.32, 1.7]\ntarget = [0.0, 0.3, 0.0]\nfov = 40\n\n";
+  s += "[[element]]\nkind = \"eigenflame\"\n";
+  if (!story_name_.empty())
+    s += "story = " + toml_string(scene_path(story_name_)) + "\n";
+  else
+    s += "model = " + toml_string(scene_path(model_name_)) + "\n";
+  s += "position = [0.0, 0.0, 0.0]\nheight = 0.62\n";
+  s += "speed = " + num(std::clamp(speed, 0.05f, 8.0f)) + "\n";
+  s += "hue = " + num(l.hue) + "\n";
+  s += "saturation = " + num(l.saturation) + "\n";
+  s += "brightness = " + num(l.brightness) + "\n";
+  s += "glow_radius = " + num(l.glow_radius) + "\n";
+  s += "glow_strength = " + num(l.glow_strength) + "\n";
+  if (l.transfer.size() >= 2) {
+    std::string stops;
+    for (const auto& c : l.transfer) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "#%02x%02x%02x", static_cast<int>(std::lround(c[0] * 255)),
+                    static_cast<int>(std::lround(c[1] * 255)),
+                    static_cast<int>(std::lround(c[2] * 255)));
+      stops += (stops.empty() ? "" : " ") + std::string(hex);
+    }
+    s += "transfer = \"" + stops + "\"  # used instead of hue and saturation\n";
+  }
+  // The element has no keys for weight edits yet: keep them as a note.
+  std::string w;
+  for (int k = 0; k < shape_weights(); ++k)
+    if (edits_.weights.offset_sigma[static_cast<size_t>(k)] != 0)
+      w += " " + std::to_string(k) + ":" + num(edits_.weights.offset_sigma[static_cast<size_t>(k)]);
+  if (!w.empty() || edits_.weights.detail_scale != 1)
+    s += "# studio weight edits (standard deviations; not played by the element yet):" + w +
+         " detail_scale:" + num(edits_.weights.detail_scale) + "\n";
+  return s;
+}
+
+void Session::save_scene(const std::string& path) const {
+  if (!ok()) throw RuntimeError(path + ": no model open, nothing to save");
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << scene_text();
+    out.close();
+    if (!out) throw RuntimeError(path + ": cannot write the scene");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw RuntimeError(path + ": cannot write the scene: " + ec.message());
+}
+
+}  // namespace candela::studio

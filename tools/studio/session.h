@@ -1,0 +1,87 @@
+// What the studio works on: the model (or why it failed to open), the
+// timeline it plays (the model's frames clip after clip, or a story planned by
+// the runtime's own planner), the playback, the edits with their undo
+// history, and "save as scene". No GL: the views draw what this holds.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "look.h"
+
+namespace candela {
+struct EigenModel;
+namespace story {
+class StoryPlan;
+}
+}  // namespace candela
+
+namespace candela::studio {
+
+class Session {
+ public:
+  // model: a .cmodel path or builtin:NAME; story: a story file, builtin:NAME
+  // or empty. Never throws for a bad model or story: error() says why.
+  Session(std::string model, std::string story);
+  ~Session();
+
+  bool ok() const { return model_ != nullptr; }
+  const std::string& error() const { return error_; }
+  bool story_failed() const { return story_failed_; }  // error() is the story's
+  const EigenModel& model() const { return *model_; }
+  const std::string& model_name() const { return model_name_; }
+  const std::string& story_name() const { return story_name_; }
+  bool has_story() const { return plan_ != nullptr; }
+
+  // The timeline: story frames, or the model's frames in order.
+  int frames() const;
+  int frame() const { return static_cast<int>(pos_); }
+  int model_frame(int i) const;  // the model frame timeline frame i shows (-1: none)
+  int clip_of_frame(int model_frame) const;
+  double fps() const;
+  void seek(int frame);
+  void step(int frames);                   // pauses
+  void seek_model_frame(int model_frame);  // the first timeline frame showing it
+  bool playing = true;
+  float speed = 1.0f;  // 0.05..8, as the element's `speed`
+  void advance(double seconds);
+
+  // The weights shown now: the timeline's (faded into the next frame over the
+  // last quarter of a frame, as the runtime's crossfade) with the edits.
+  std::span<const float> shown() const { return shown_; }
+  std::span<const float> base() const { return base_; }
+  float sigma(int k) const { return sigma_[static_cast<size_t>(k)]; }
+  int shape_weights() const;  // how many offsets apply (<= kShapeWeights)
+
+  const Edits& edits() const { return edits_; }
+  // Every change to the edits goes through here (UI widgets and scripts).
+  // begin_edit() records the state to undo to (the edits as they are, or as
+  // they were before a widget changed them): once per gesture.
+  void begin_edit() { begin_edit(edits_); }
+  void begin_edit(const Edits& before);
+  void set_offset(int k, float sigmas);
+  void set_detail_scale(float s);
+  void set_look(const Look& look);
+  void reset_edits();  // records an undo step itself
+  bool undo();
+  size_t undo_depth() const { return undo_.size(); }
+
+  std::string scene_text() const;
+  void save_scene(const std::string& path) const;  // throws RuntimeError naming the file
+  std::string status;  // the last thing done ("saved ..."), shown in the UI
+
+ private:
+  void update_shown();
+  std::string model_name_, story_name_, error_;
+  bool story_failed_ = false;
+  std::shared_ptr<const EigenModel> model_;
+  std::unique_ptr<story::StoryPlan> plan_;
+  std::vector<float> sigma_, base_, shown_;
+  double pos_ = 0;
+  Edits edits_;
+  std::vector<Edits> undo_;
+};
+
+}  // namespace candela::studio
