@@ -5,12 +5,9 @@
 
 #include "core/error.h"
 #include "core/file_read.h"
+#include "embedded_scenes.h"
 #include "input/input_config.h"
 #include "scene/params.h"
-
-namespace candela::scenes {
-std::string_view find(std::string_view name);
-}
 
 namespace candela {
 SceneDesc load_scene_text(std::string_view text, const std::string& name) {
