@@ -309,16 +309,30 @@ void EigenBatch::layout() {
   glow_a_ = RenderTarget::checked(glow_w, glow_h, "eigenflame: glow atlas");
   glow_b_ = RenderTarget::checked(glow_w, glow_h, "eigenflame: glow atlas");
   sprite_ = RenderTarget::checked(sprite_w, sprite_h, "eigenflame: sprite atlas");
+  for (EigenSpriteJob* j : members_) j->drawn_valid = false;  // new atlases: draw everyone
   laid_out_ = true;
 }
 
 void EigenBatch::render() {
-  if (members_.empty()) return;
-  const FramebufferRestore caller;
   if (!laid_out_) layout();
+  // Only flames whose weights differ from those their sprite shows (the
+  // output depends on nothing else that changes): with a model frame held
+  // between its 30 fps steps, most frames redraw few flames or none.
+  bool any = false;
+  for (EigenSpriteJob* j : members_) {
+    const size_t n = std::min(j->weights.size(), static_cast<size_t>(j->recon->components()));
+    j->redraw = !j->drawn_valid ||
+                !std::equal(j->weights.begin(), j->weights.begin() + n, j->drawn.begin());
+    if (j->redraw) std::copy_n(j->weights.begin(), n, j->drawn.begin());
+    j->drawn_valid = true;
+    any = any || j->redraw;
+  }
+  if (!any) return;
+  const FramebufferRestore caller;
   // 1. Every flame's reconstruction into the gray atlas.
   gray_.bind();
-  for (EigenSpriteJob* j : members_) j->recon->draw_at(j->weights, j->gray_x, j->gray_y);
+  for (EigenSpriteJob* j : members_)
+    if (j->redraw) j->recon->draw_at(j->weights, j->gray_x, j->gray_y);
   // 2. Glow, horizontal then vertical, each flame in its own region.
   glow_.use();
   glUniform1i(ug_.source, 0);
@@ -329,7 +343,7 @@ void EigenBatch::render() {
     glBindTexture(GL_TEXTURE_2D, pass == 0 ? gray_.texture() : glow_a_.texture());
     glUniform1i(ug_.mask, pass == 0 ? 1 : 0);
     for (EigenSpriteJob* j : members_) {
-      if (j->glow_strength <= 0) continue;
+      if (j->glow_strength <= 0 || !j->redraw) continue;
       glViewport(j->glow_x, j->glow_y, j->glow_w, j->glow_h);
       glUniform1i(ug_.taps, j->taps);
       glUniform1fv(ug_.offset, j->taps, j->tap_offset.data());
@@ -361,6 +375,7 @@ void EigenBatch::render() {
   glUniform1i(us_.ramp, 2);
   glActiveTexture(GL_TEXTURE2);
   for (EigenSpriteJob* j : members_) {
+    if (!j->redraw) continue;
     glViewport(j->sprite_x, j->sprite_y, j->sprite_w, j->sprite_h);
     glBindTexture(GL_TEXTURE_2D, j->ramp);
     glUniform4f(us_.gray_rect, static_cast<float>(j->gray_x), static_cast<float>(j->gray_y),

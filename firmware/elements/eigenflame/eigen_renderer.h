@@ -106,6 +106,10 @@ struct EigenSpriteJob {
   int sprite_w = 0, sprite_h = 0;
   // Places in the atlases (EigenBatch's layout).
   int gray_x = 0, gray_y = 0, glow_x = 0, glow_y = 0, sprite_x = 0, sprite_y = 0;
+  // The weights its sprite in the atlas shows (EigenBatch::render redraws
+  // only flames whose weights changed: a held model frame costs nothing).
+  std::array<float, EigenReconstructor::kMaxComponents> drawn{};
+  bool drawn_valid = false, redraw = true;
 };
 
 // One flame's GPU side. Its offscreen work (reconstruction, glow, the
@@ -150,8 +154,9 @@ class EigenBatch final : public SceneResource {
   EigenBatch();
   void add(EigenSpriteJob* job);
   void remove(EigenSpriteJob* job);
-  // Every member's reconstruction, glow and sprite into the atlases.
-  // Restores the caller's framebuffer and viewport.
+  // Every member's reconstruction, glow and sprite into the atlases, for
+  // the members whose weights changed since they were last drawn. Restores
+  // the caller's framebuffer and viewport.
   void render();
   void prepare(const FrameContext&) override { render(); }
 
