@@ -36,14 +36,20 @@ std::string joined_names(std::initializer_list<std::string_view> files) {
   return name;
 }
 
+// compose_shader numbers file i's lines from i * kLinesPerFile, so a line
+// number names its file (drivers do not all report #line's source number).
+constexpr long kLinesPerFile = 100000;
+
 std::string annotate(const std::vector<std::string>& files, std::string_view log) {
-  // Mesa: "0:12(5): error: ..."; others: "ERROR: 0:12: ...". The number
-  // before the line is the source string: the file's place in a composed stage.
-  static const std::regex mesa(R"(^\s*(\d+):(\d+)\((\d+)\):\s*(.*)$)");
-  static const std::regex generic(R"(^\s*(ERROR|WARNING):\s*(\d+):(\d+):\s*(.*)$)");
-  const auto file = [&](const std::string& n) -> const std::string& {
-    const size_t i = std::stoul(n);
-    return i < files.size() ? files[i] : files.front();
+  // Mesa: "0:12(5): error: ..."; others: "ERROR: 0:12: ...".
+  static const std::regex mesa(R"(^\s*\d+:(\d+)\((\d+)\):\s*(.*)$)");
+  static const std::regex generic(R"(^\s*(ERROR|WARNING):\s*\d+:(\d+):\s*(.*)$)");
+  // "file:line" of a reported line number.
+  const auto where = [&](const std::string& n) {
+    const long line = std::stol(n);
+    const size_t i = static_cast<size_t>(line / kLinesPerFile);
+    return (i < files.size() ? files[i] : files.front()) + ":" +
+           std::to_string(i < files.size() ? line % kLinesPerFile : line);
   };
   std::string out;
   size_t start = 0;
@@ -54,9 +60,9 @@ std::string annotate(const std::vector<std::string>& files, std::string_view log
     const std::string line = text.substr(start, end - start);
     std::smatch m;
     if (std::regex_match(line, m, mesa)) {
-      out += file(m[1].str()) + ":" + m[2].str() + ":" + m[3].str() + ": " + m[4].str() + "\n";
+      out += where(m[1].str()) + ":" + m[2].str() + ": " + m[3].str() + "\n";
     } else if (std::regex_match(line, m, generic)) {
-      out += file(m[2].str()) + ":" + m[3].str() + ": " + m[1].str() + ": " + m[4].str() + "\n";
+      out += where(m[2].str()) + ": " + m[1].str() + ": " + m[3].str() + "\n";
     } else if (!line.empty()) {
       out += files.front() + ": " + line + "\n";
     }
@@ -105,9 +111,10 @@ std::string compose_shader(std::initializer_list<std::string_view> files,
   int index = 0;
   for (const auto f : files) {
     const std::string_view text = library_shader(f);
-    // The file's second line (after its #version) is line 2 of source `index`.
-    src += "#line " + std::to_string(text.starts_with("#version") ? 2 : 1) + " " +
-           std::to_string(index++) + "\n";
+    // The file's second line (after its #version) is its line 2 (plus the
+    // file's offset: annotate() reads the file back from the line number).
+    src += "#line " +
+           std::to_string(index++ * kLinesPerFile + (text.starts_with("#version") ? 2 : 1)) + "\n";
     src += drop_version_line(text);
     if (!src.ends_with('\n')) src += '\n';
   }

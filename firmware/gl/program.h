@@ -17,8 +17,8 @@ std::string_view library_shader(std::string_view name);
 // One stage's source put together from library shaders: "#version 300 es",
 // then `defines` (any lines: "#define X 1\n", a precision statement), then
 // each file in order without its own #version line. A "#line" before each
-// file keeps the compiler's line numbers those of the file (its source
-// number is the file's place in `files`), so errors name the right line.
+// file numbers its lines as in the file, plus 100000 times its place in
+// `files`, so a compile error (Program) names the right file and line.
 std::string compose_shader(std::initializer_list<std::string_view> files,
                            std::string_view defines = {});
 

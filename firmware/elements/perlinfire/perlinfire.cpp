@@ -613,13 +613,13 @@ std::string perlinfire_defines(FireNoise kind, FireShading shading) {
 std::string perlinfire_fragment_source(std::string_view body, FireNoise kind, FireShading shading) {
   std::string src = compose_shader({"perlinfire_noise.frag", "fire_ramp.frag"},
                                    perlinfire_defines(kind, shading));
-  // `body` is source 2, its lines numbered as in its own text.
+  // `body` is the third file: its lines numbered as in its own text, plus 200000.
   if (body.starts_with("#version")) {
     const auto nl = body.find('\n');
     body = nl == std::string_view::npos ? std::string_view{} : body.substr(nl + 1);
-    src += "#line 2 2\n";
+    src += "#line 200002\n";
   } else {
-    src += "#line 1 2\n";
+    src += "#line 200001\n";
   }
   src += body;
   return src;
