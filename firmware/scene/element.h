@@ -1,8 +1,24 @@
 // The scene-element interface. An element is one thing in the scene (a
 // candle, an eigen-flame, a Perlin fire, the test pattern). It is parsed and
 // validated without GL (ElementSpec, used by --check), then created with GL.
-// update() runs on the fixed animation step; draw() issues GL calls only.
-// Neither may allocate once running.
+// update() runs on the fixed animation step; prepare() and draw() issue GL
+// calls only. None may allocate once running.
+//
+// A frame, as Scene::draw() runs it:
+//   1. prepare(frame) on every element, then prepare(frame) on every shared
+//      resource (SceneResources) the elements made;
+//   2. the scene binds the screen framebuffer (frame.screen_framebuffer) with
+//      the whole screen as viewport and the scissor test off, and clears it;
+//   3. draw(frame, pass) on every element, pass by pass (DrawPass).
+// The rule: offscreen work happens in prepare; draw passes only draw into
+// the bound screen framebuffer. Anything that binds another framebuffer,
+// changes the viewport or renders into a texture (an eigen-flame's
+// reconstruction, a Perlin fire's reduced-scale march, a cached background)
+// goes in prepare, which may leave any framebuffer bound; filling and
+// uploading per-frame instance buffers goes there too. A draw pass leaves
+// the screen framebuffer bound and the viewport as it found them, so the
+// screen is entered once per frame (on tiled GPUs and llvmpipe each re-entry
+// stores and reloads the whole screen).
 #pragma once
 
 #include <cstdint>
@@ -10,6 +26,9 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <typeinfo>
+#include <vector>
 
 #include "core/fixed.h"
 #include "gl/math.h"
@@ -40,17 +59,61 @@ struct FrameContext {
   Mat4 view, projection, view_projection;
   Vec3 camera_position;
   double last_frame_ms = 0;  // the previous frame's time, begin to end of present (0: none yet)
+  // The framebuffer the draw passes draw into (a GL name; 0: the window's):
+  // the one bound when Scene::draw() began. Set before prepare().
+  uint32_t screen_framebuffer = 0;
+};
+
+// Something the elements of one scene share (the atlases every eigen-flame
+// renders into). Made on first use, it lives as long as the scene, longer
+// than any element; its prepare() runs once per frame, after every
+// element's prepare() (the same rule: offscreen work only).
+class SceneResource {
+ public:
+  virtual ~SceneResource() = default;
+  virtual void prepare(const FrameContext& /*frame*/) {}
+};
+
+// The scene's shared resources, one of each type. Elements ask for theirs at
+// creation (ElementSpec::create) and keep the reference.
+class SceneResources {
+ public:
+  // The scene's T (a SceneResource made with T(), GL context current),
+  // made now if this is the first asking.
+  template <class T>
+  T& get() {
+    static_assert(std::is_base_of_v<SceneResource, T>);
+    for (const auto& r : resources_)
+      if (*r.type == typeid(T)) return static_cast<T&>(*r.resource);
+    resources_.push_back({&typeid(T), std::make_unique<T>()});
+    return static_cast<T&>(*resources_.back().resource);
+  }
+  void prepare(const FrameContext& frame) {
+    for (const auto& r : resources_) r.resource->prepare(frame);
+  }
+
+ private:
+  struct Entry {
+    const std::type_info* type;
+    std::unique_ptr<SceneResource> resource;
+  };
+  std::vector<Entry> resources_;
 };
 
 struct SceneContext {
   std::string scene_file;  // for messages and relative paths
   uint64_t seed = 1;       // this element's seed (scene seed mixed with its index, or its own)
+  SceneResources* resources = nullptr;  // the scene's; never null when a Scene creates elements
 };
 
 class Element {
  public:
   virtual ~Element() = default;
   virtual void update(const StepContext& step) = 0;
+  // This frame's offscreen work (see the rule above); called once per frame
+  // before the screen is cleared. Default: none.
+  virtual void prepare(const FrameContext& /*frame*/) {}
+  // Draws this pass into the bound screen framebuffer, and nothing else.
   virtual void draw(const FrameContext& frame, DrawPass pass) = 0;
   // How many candles this element shows alight (the control socket's
   // `state`); -1: it has no candles. Called once per frame: no allocation.

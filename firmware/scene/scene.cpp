@@ -23,6 +23,7 @@ Scene::Scene(const SceneDesc& desc, uint64_t seed_override, const std::atomic<bo
     SceneContext ctx;
     ctx.scene_file = desc.file;
     ctx.seed = e.spec->seed ? e.spec->seed : mix_seed(seed, i);
+    ctx.resources = &resources_;
     if (const std::string p = e.spec->problem(); !p.empty())
       LOG_ERROR("%s: %s", desc.file.c_str(), p.c_str());
     try {
@@ -52,6 +53,16 @@ void Scene::draw(FrameContext& frame) {
       Mat4::perspective(camera_.fov_deg * 3.14159265f / 180.0f, aspect, 0.02f, 100.0f);
   frame.view_projection = frame.projection * frame.view;
   frame.camera_position = camera_.position;
+  // The framebuffer the display bound for this frame.
+  GLint screen = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &screen);
+  frame.screen_framebuffer = static_cast<uint32_t>(screen);
+  // 1. Offscreen work, 2. the screen, 3. the passes (scene/element.h).
+  for (auto& e : elements_) e->prepare(frame);
+  resources_.prepare(frame);
+  glBindFramebuffer(GL_FRAMEBUFFER, frame.screen_framebuffer);
+  glViewport(0, 0, frame.width, frame.height);
+  glDisable(GL_SCISSOR_TEST);
   glClearColor(background_.x, background_.y, background_.z, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   for (DrawPass pass : kAllPasses)

@@ -1,6 +1,7 @@
-// The running scene: elements made from a SceneDesc, the wind field they
-// share, and the camera. The frame loop calls update() per fixed step and
-// draw() per frame; keys become wind events.
+// The running scene: elements made from a SceneDesc, the wind field and the
+// resources they share, and the camera. The frame loop calls update() per
+// fixed step and draw() per frame (the order of a frame: scene/element.h);
+// keys become wind events.
 #pragma once
 
 #include <atomic>
@@ -37,6 +38,7 @@ class Scene : public DisplayEvents {
   Vec3 background_;
   CameraDesc camera_;
   WindField wind_;
+  SceneResources resources_;  // before elements_: outlives every element
   std::vector<std::unique_ptr<Element>> elements_;
   size_t failed_ = 0;
   SoundCue sound_cue_;

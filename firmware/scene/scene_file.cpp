@@ -5,15 +5,13 @@
 
 #include "core/error.h"
 #include "core/file_read.h"
+#include "embedded_scenes.h"
 #include "input/input_config.h"
 #include "scene/params.h"
 
-namespace candela::scenes {
-std::string_view find(std::string_view name);
-}
-
 namespace candela {
-SceneDesc load_scene_text(std::string_view text, const std::string& name) {
+SceneDesc load_scene_text(std::string_view text, const std::string& name,
+                          std::span<const ElementKind> more_kinds) {
   const toml::table root = parse_toml_text(text, name);
   SceneDesc scene;
   scene.file = name;
@@ -82,13 +80,14 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name) {
       const std::string prefix = "element[" + std::to_string(i) + "]";
       ParamReader r(t, name, prefix);
       std::string known;
-      for (const auto& k : element_kinds())
-        known += (known.empty() ? "" : ", ") + std::string(k.name);
-      if (!r.has("kind")) r.fail("kind", "missing; expected one of " + known);
-      const std::string kind = r.string("kind", "");
       const ElementKind* found = nullptr;
-      for (const auto& k : element_kinds())
-        if (k.name == kind) found = &k;
+      const std::string kind = r.has("kind") ? r.string("kind", "") : "";
+      for (const auto kinds : {element_kinds(), more_kinds})
+        for (const auto& k : kinds) {
+          known += (known.empty() ? "" : ", ") + std::string(k.name);
+          if (k.name == kind) found = &k;
+        }
+      if (!r.has("kind")) r.fail("kind", "missing; expected one of " + known);
       if (!found) r.fail("kind", "expected one of " + known + ", got \"" + echo_value(kind) + "\"");
       SceneDesc::Entry e;
       e.kind = kind;

@@ -6,6 +6,7 @@
 #include <toml++/toml.h>
 
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -51,7 +52,9 @@ inline constexpr unsigned kMaxElementCost = 64;  // sum of ElementSpec::cost()
 // Throws ConfigError (file, key, what was expected). The file must be a
 // regular file within the scene size limit (core/file_read.h).
 SceneDesc load_scene_file(const std::string& path);
-SceneDesc load_scene_text(std::string_view text, const std::string& name);
+// `more_kinds`: element kinds besides element_kinds() (a test's own).
+SceneDesc load_scene_text(std::string_view text, const std::string& name,
+                          std::span<const ElementKind> more_kinds = {});
 // Built-in scenes ("default", "test-pattern", ...): firmware/scenes/*.toml.
 SceneDesc load_builtin_scene(const std::string& name);
 

@@ -4,12 +4,9 @@
 
 #include "core/error.h"
 #include "core/file_read.h"
+#include "embedded_stories.h"
 #include "scene/params.h"
 #include "scene/toml_text.h"
-
-namespace candela::stories {
-std::string_view find(std::string_view name);
-}
 
 namespace candela::story {
 

@@ -3,13 +3,10 @@
 #include <cmath>
 
 #include "core/log.h"
+#include "embedded_noise_tables.h"
 #include "scene/element.h"
 #include "scene/params.h"
 #include "wind/fixed_math.h"
-
-namespace candela::noise_tables {
-std::string_view find(std::string_view name);
-}
 
 namespace candela {
 

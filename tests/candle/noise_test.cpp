@@ -7,11 +7,8 @@
 
 #include "core/error.h"
 #include "core/noise_table.h"
+#include "embedded_noise_tables.h"
 #include "noise/noise_synth.h"
-
-namespace candela::noise_tables {
-std::string_view find(std::string_view name);
-}
 
 namespace candela {
 namespace {

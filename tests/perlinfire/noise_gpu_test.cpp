@@ -11,13 +11,10 @@
 #include "display/display.h"
 #include "elements/perlinfire/noise_tables.h"
 #include "elements/perlinfire/perlinfire.h"
+#include "embedded_shaders.h"
 #include "gl/program.h"
 #include "gl/texture.h"
 #include "perlinfire/noise_reference.h"
-
-namespace candela::shaders {
-std::string_view find(std::string_view name);
-}
 
 namespace candela {
 namespace {

@@ -8,13 +8,10 @@
 #include <vector>
 
 #include "core/error.h"
+#include "embedded_scenes.h"
 #include "gl/math.h"
 #include "scene/scene_file.h"
 #include "support/render_harness.h"
-
-namespace candela::scenes {
-std::string_view find(std::string_view name);  // the built-in scenes (firmware/scenes/)
-}
 
 namespace candela {
 namespace {

@@ -6,14 +6,11 @@
 #include "colour_flags.h"
 #include "core/error.h"
 #include "display/frame_writer.h"
+#include "embedded_models.h"
 #include "model/flame_model.h"
 #include "render.h"
 #include "story/story_plan.h"
 #include "subcommand.h"
-
-namespace candela::eigen_models {
-std::string_view find(std::string_view name);
-}
 
 namespace {
 

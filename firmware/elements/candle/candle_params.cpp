@@ -4,11 +4,8 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "embedded_noise_tables.h"
 #include "scene/params.h"
-
-namespace candela::noise_tables {
-std::string_view find(std::string_view name);
-}
 
 namespace candela {
 namespace {

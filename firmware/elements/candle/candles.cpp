@@ -8,6 +8,7 @@
 #include "core/random.h"
 #include "elements/candle/flame_still.h"
 #include "elements/candle/flame_warp.h"
+#include "gl/instances.h"
 #include "gl/program.h"
 #include "gl/texture.h"
 #include "scene/params.h"
@@ -96,62 +97,6 @@ BodyMesh make_body_mesh(int segments, int wick_segments) {
   return m;
 }
 
-// Attribute `loc` reads the vec4 number `vec4_index` of records `stride_vec4`
-// vec4s long from the bound GL_ARRAY_BUFFER.
-void set_attrib(GLuint loc, int vec4_index, int stride_vec4, bool instanced) {
-  glEnableVertexAttribArray(loc);
-  glVertexAttribPointer(
-      loc, 4, GL_FLOAT, GL_FALSE, stride_vec4 * 4 * static_cast<GLsizei>(sizeof(float)),
-      reinterpret_cast<const void*>(static_cast<uintptr_t>(vec4_index) * 4 * sizeof(float)));
-  if (instanced) glVertexAttribDivisor(loc, 1);
-}
-
-// Camera-facing quads, one per instance, corners from gl_VertexID: the glows
-// and the smoke wisps. Instances are staged each frame into storage allocated
-// once, then drawn with one instanced call.
-class Billboards {
- public:
-  Billboards() = default;
-  Billboards(const char* vert, const char* frag, int vec4s, size_t max_instances)
-      : prog_(Program::from_library(vert, frag)),
-        vp_(prog_.uniform("u_view_projection")),
-        right_(prog_.uniform("u_right")),
-        up_(prog_.uniform("u_up")),
-        vao_(make_vertex_array()),
-        vbo_(make_buffer()),
-        data_(max_instances * static_cast<size_t>(vec4s) * 4, 0.0f),
-        vec4s_(vec4s) {
-    glBindVertexArray(vao_.get());
-    glBindBuffer(GL_ARRAY_BUFFER, vbo_.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data_.size() * sizeof(float)), nullptr,
-                 GL_STREAM_DRAW);
-    for (int k = 0; k < vec4s_; ++k) set_attrib(static_cast<GLuint>(k), k, vec4s_, true);
-  }
-  void clear() { count_ = 0; }
-  int count() const { return count_; }
-  // Where the next instance's vec4s go.
-  float* add() { return &data_[static_cast<size_t>(count_++) * vec4s_ * 4]; }
-  void draw(const FrameContext& frame, const Vec3& right, const Vec3& up) const {
-    prog_.use();
-    glUniformMatrix4fv(vp_, 1, GL_FALSE, frame.view_projection.m);
-    glUniform3f(right_, right.x, right.y, right.z);
-    glUniform3f(up_, up.x, up.y, up.z);
-    glBindBuffer(GL_ARRAY_BUFFER, vbo_.get());
-    glBufferSubData(GL_ARRAY_BUFFER, 0,
-                    static_cast<GLsizeiptr>(count_ * vec4s_ * 4 * sizeof(float)), data_.data());
-    glBindVertexArray(vao_.get());
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, count_);
-  }
-
- private:
-  Program prog_;
-  GLint vp_ = -1, right_ = -1, up_ = -1;
-  VertexArray vao_;
-  Buffer vbo_;
-  std::vector<float> data_;
-  int vec4s_ = 0, count_ = 0;
-};
-
 class Candles final : public Element {
  public:
   Candles(const CandlesSpec& spec, const SceneContext& ctx);
@@ -159,6 +104,7 @@ class Candles final : public Element {
     dt_seconds_ = step.dt.to_float();
     for (auto& r : rigs_) r.update(step);
   }
+  void prepare(const FrameContext& frame) override;
   void draw(const FrameContext& frame, DrawPass pass) override;
   int candles_lit() const override {
     int n = 0;
@@ -185,8 +131,6 @@ class Candles final : public Element {
   }
 
  private:
-  void prepare(const FrameContext& frame);
-
   std::vector<CandleDesc> desc_;
   std::vector<CandleRig> rigs_;
   std::vector<std::shared_ptr<const NoiseTable>> user_tables_;  // keep alive
@@ -198,16 +142,13 @@ class Candles final : public Element {
   Program flame_prog_, body_prog_;
   Billboards glows_, smokes_;
   Texture still_;
-  Buffer flame_mesh_vbo_, flame_mesh_ibo_, flame_inst_vbo_;
-  Buffer body_mesh_vbo_, body_mesh_ibo_, body_inst_vbo_;
+  Buffer flame_mesh_vbo_, flame_mesh_ibo_;
+  Buffer body_mesh_vbo_, body_mesh_ibo_;
+  InstanceBuffer flames_, bodies_;  // filled in prepare(), every frame
   VertexArray flame_vao_, body_vao_;
   GLsizei flame_index_count_ = 0, body_index_count_ = 0;
 
-  // Per-frame staging, allocated once.
-  std::vector<float> flame_data_, body_data_;
   std::vector<uint32_t> order_;  // candles far to near
-  int flames_ = 0;
-  bool prepared_ = false;
   Vec3 sorted_for_{1e30f, 0, 0};
 
   struct FlameUniforms {
@@ -245,8 +186,6 @@ Candles::Candles(const CandlesSpec& spec, const SceneContext& ctx)
   body_camera_ = body_prog_.uniform("u_camera");
 
   const size_t n = desc_.size();
-  flame_data_.assign(n * kFlameVec4 * 4, 0);
-  body_data_.assign(n * kBodyVec4 * 4, 0);
   order_.resize(n);
   for (size_t i = 0; i < n; ++i) order_[i] = static_cast<uint32_t>(i);
 
@@ -282,12 +221,8 @@ Candles::Candles(const CandlesSpec& spec, const SceneContext& ctx)
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, flame_mesh_ibo_.get());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * 2), idx.data(),
                  GL_STATIC_DRAW);
-    flame_inst_vbo_ = make_buffer();
-    glBindBuffer(GL_ARRAY_BUFFER, flame_inst_vbo_.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(flame_data_.size() * sizeof(float)),
-                 nullptr, GL_STREAM_DRAW);
-    for (int k = 0; k < kFlameVec4; ++k)
-      set_attrib(static_cast<GLuint>(1 + k), k, kFlameVec4, true);
+    flames_ = InstanceBuffer(kFlameVec4, n);
+    flames_.bind_attributes(1);
   }
   // Glow: a camera-facing quad per candle.
   glows_ = Billboards("candle_glow.vert", "candle_glow.frag", kGlowVec4, n);
@@ -310,20 +245,17 @@ Candles::Candles(const CandlesSpec& spec, const SceneContext& ctx)
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, body_mesh_ibo_.get());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.indices.size() * 2),
                  m.indices.data(), GL_STATIC_DRAW);
-    body_inst_vbo_ = make_buffer();
-    glBindBuffer(GL_ARRAY_BUFFER, body_inst_vbo_.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(body_data_.size() * sizeof(float)),
-                 nullptr, GL_STREAM_DRAW);
-    for (int k = 0; k < kBodyVec4; ++k) set_attrib(static_cast<GLuint>(2 + k), k, kBodyVec4, true);
+    bodies_ = InstanceBuffer(kBodyVec4, n);
+    bodies_.bind_attributes(2);
   }
   // Smoke wisps of candles that just went out.
   smokes_ = Billboards("candle_smoke.vert", "candle_smoke.frag", kSmokeVec4, n);
   glBindVertexArray(0);
 }
 
-// Fills every instance array for this frame: at the glow pass, the first of
-// ours in every frame.
+// Fills and uploads every instance buffer for this frame.
 void Candles::prepare(const FrameContext& frame) {
+  if (desc_.empty()) return;
   const Vec3 cam = frame.camera_position;
   if (length(cam - sorted_for_) > 1e-4f) {
     // Far to near, so that blended flames overlap correctly.
@@ -333,9 +265,10 @@ void Candles::prepare(const FrameContext& frame) {
     });
     sorted_for_ = cam;
   }
-  flames_ = 0;
-  glows_.clear();
-  smokes_.clear();
+  flames_.clear();
+  glows_.instances().clear();
+  smokes_.instances().clear();
+  bodies_.set_count(static_cast<int>(order_.size()));
   const float base_y = look_.layout.base.to_float();
   for (size_t k = 0; k < order_.size(); ++k) {
     const uint32_t i = order_[k];
@@ -359,7 +292,7 @@ void Candles::prepare(const FrameContext& frame) {
     };
 
     // Bodies go near to far, so hidden wax fails the depth test early.
-    float* b = &body_data_[(order_.size() - 1 - k) * kBodyVec4 * 4];
+    float* b = bodies_.record(order_.size() - 1 - k);
     // The flame's light: from the middle of the morphed centre line.
     const ControlLines& L = rig.lines();
     const float mx = 0.5f * (L.line[0].px.to_float() + L.line[2].qx.to_float());
@@ -372,7 +305,7 @@ void Candles::prepare(const FrameContext& frame) {
     std::copy(std::begin(body), std::end(body), b);
 
     if (s.lit && scale > 1e-5f) {
-      float* fl = &flame_data_[static_cast<size_t>(flames_++) * kFlameVec4 * 4];
+      float* fl = flames_.add();
       for (int l = 0; l < kMaxControlLines; ++l) {
         const ControlLine& c = L.line[l];
         fl[l * 4 + 0] = c.px.to_float();
@@ -392,7 +325,7 @@ void Candles::prepare(const FrameContext& frame) {
       const float dist = length(centre - cam);
       const float fade = 1.0f / (1.0f + (dist / look_.glow_falloff) * (dist / look_.glow_falloff));
       const float warm = std::clamp(bright, 0.0f, 1.5f);
-      float* g = glows_.add();
+      float* g = glows_.instances().add();
       const float glow[kGlowVec4 * 4] = {centre.x,
                                          centre.y,
                                          centre.z,
@@ -406,7 +339,7 @@ void Candles::prepare(const FrameContext& frame) {
     const float smoke_age =
         s.out_steps >= 0 ? static_cast<float>(s.out_steps) * dt_seconds_ : -1.0f;
     if (smoke_age >= 0 && smoke_age < smoke_seconds_) {
-      float* sm = smokes_.add();
+      float* sm = smokes_.instances().add();
       const float smoke[kSmokeVec4 * 4] = {base.x,
                                            base.y + wick * 0.3f,
                                            base.z,
@@ -418,13 +351,15 @@ void Candles::prepare(const FrameContext& frame) {
       std::copy(std::begin(smoke), std::end(smoke), sm);
     }
   }
+  flames_.upload();
+  bodies_.upload();
+  glows_.instances().upload();
+  smokes_.instances().upload();
 }
 
 void Candles::draw(const FrameContext& frame, DrawPass pass) {
   if (pass != DrawPass::kGlow && pass != DrawPass::kBody && pass != DrawPass::kFlame) return;
   if (desc_.empty()) return;
-  if (pass == DrawPass::kGlow || !prepared_) prepare(frame);
-  prepared_ = true;
   const Mat4& v = frame.view;
   const Vec3 right{v.at(0, 0), v.at(0, 1), v.at(0, 2)};
   const Vec3 up{v.at(1, 0), v.at(1, 1), v.at(1, 2)};
@@ -435,7 +370,7 @@ void Candles::draw(const FrameContext& frame, DrawPass pass) {
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    glows_.draw(frame, right, up);
+    glows_.draw(frame.view_projection, right, up);
   } else if (pass == DrawPass::kBody) {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
@@ -447,9 +382,6 @@ void Candles::draw(const FrameContext& frame, DrawPass pass) {
     body_prog_.use();
     glUniformMatrix4fv(body_vp_, 1, GL_FALSE, frame.view_projection.m);
     glUniform3f(body_camera_, cam.x, cam.y, cam.z);
-    glBindBuffer(GL_ARRAY_BUFFER, body_inst_vbo_.get());
-    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(body_data_.size() * sizeof(float)),
-                    body_data_.data());
     glBindVertexArray(body_vao_.get());
     glDrawElementsInstanced(GL_TRIANGLES, body_index_count_, GL_UNSIGNED_SHORT, nullptr,
                             static_cast<GLsizei>(desc_.size()));
@@ -459,7 +391,7 @@ void Candles::draw(const FrameContext& frame, DrawPass pass) {
     glDepthMask(GL_FALSE);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied
-    if (flames_) {
+    if (flames_.count()) {
       flame_prog_.use();
       glUniformMatrix4fv(fu_.view_projection, 1, GL_FALSE, frame.view_projection.m);
       glUniform3f(fu_.camera, cam.x, cam.y, cam.z);
@@ -478,17 +410,13 @@ void Candles::draw(const FrameContext& frame, DrawPass pass) {
       glActiveTexture(GL_TEXTURE0);
       glBindTexture(GL_TEXTURE_2D, still_.get());
       glUniform1i(fu_.still, 0);
-      glBindBuffer(GL_ARRAY_BUFFER, flame_inst_vbo_.get());
-      glBufferSubData(GL_ARRAY_BUFFER, 0,
-                      static_cast<GLsizeiptr>(flames_ * kFlameVec4 * 4 * sizeof(float)),
-                      flame_data_.data());
       glBindVertexArray(flame_vao_.get());
       glDrawElementsInstanced(GL_TRIANGLES, flame_index_count_, GL_UNSIGNED_SHORT, nullptr,
-                              flames_);
+                              flames_.count());
     }
     if (smokes_.count()) {
       glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-      smokes_.draw(frame, right, up);
+      smokes_.draw(frame.view_projection, right, up);
     }
     glDepthMask(GL_TRUE);
   }

@@ -7,65 +7,16 @@
 
 #include "core/error.h"
 
-namespace candela::shaders {
-std::string_view find(std::string_view name);
-}
-
 namespace candela {
 namespace {
 
 constexpr int kGridColumns = 8;
-
-std::string_view shader(std::string_view name) {
-  const auto s = shaders::find(name);
-  if (s.empty())
-    throw RuntimeError(std::string("gles_shaders/") + std::string(name) + ": not built in");
-  return s;
-}
-
-// The shader with `defines` inserted after its #version line.
-std::string with_defines(std::string_view src, const std::string& defines) {
-  const auto nl = src.find('\n');
-  return std::string(src.substr(0, nl + 1)) + defines + std::string(src.substr(nl + 1));
-}
-
-Texture make_target(int w, int h) {
-  Texture t = make_texture();
-  glBindTexture(GL_TEXTURE_2D, t.get());
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  return t;
-}
-
-Framebuffer make_fbo_for(const Texture& t, const char* what) {
-  Framebuffer f = make_framebuffer();
-  glBindFramebuffer(GL_FRAMEBUFFER, f.get());
-  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.get(), 0);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw RuntimeError(std::string("eigenflame: ") + what + " framebuffer incomplete");
-  return f;
-}
 
 uint32_t raw_at(const ImageStack& s, int image, size_t pixel) {
   const size_t at = static_cast<size_t>(image) * s.width * s.height + pixel;
   if (!s.u16) return s.data[at];
   return static_cast<uint32_t>(s.data[2 * at]) | (static_cast<uint32_t>(s.data[2 * at + 1]) << 8);
 }
-
-class BoundFramebuffer {  // remembers the caller's framebuffer
- public:
-  BoundFramebuffer() { glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &id_); }
-  void restore(int w, int h) const {
-    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(id_));
-    glViewport(0, 0, w, h);
-  }
-
- private:
-  GLint id_ = 0;
-};
 
 }  // namespace
 
@@ -114,24 +65,19 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
 
   const std::string defines = "#define MAX_VEC4 " + std::to_string(coef_.size() / 4) + "\n" +
                               (layout == StackLayout::kLayered ? "#define LAYERED\n" : "");
-  program_ =
-      Program::from_source("fullscreen.vert", shader("fullscreen.vert"),
-                           layout == StackLayout::kLayered ? "eigenflame_reconstruct.frag (layered)"
-                                                           : "eigenflame_reconstruct.frag (packed)",
-                           with_defines(shader("eigenflame_reconstruct.frag"), defines));
+  program_ = Program::from_library("fullscreen.vert", "eigenflame_reconstruct.frag", defines);
   u_stack_ = program_.uniform("u_stack");
   u_layers_ = program_.uniform("u_layers");
   u_coef_ = program_.uniform("u_coef");
   u_bias_ = program_.uniform("u_bias");
   u_origin_ = program_.uniform("u_origin");
-  target_ = make_target(width_, height_);
-  fbo_ = make_fbo_for(target_, "reconstruction");
+  target_ = RenderTarget::checked(width_, height_, "eigenflame: reconstruction");
   vao_ = make_vertex_array();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 void EigenReconstructor::reconstruct(std::span<const float> weights) {
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+  target_.bind();
   draw_at(weights, 0, 0);
 }
 
@@ -166,55 +112,63 @@ void EigenReconstructor::draw_at(std::span<const float> weights, int x, int y) {
 
 EigenRenderer::EigenRenderer(const ImageStack& mean, const ImageStack& eigen, StackLayout layout,
                              int max_components, const FlameLookSettings& look,
-                             std::span<const float> weights)
-    : recon_(mean, eigen, layout, max_components),
-      look_(look),
-      weights_(weights),
-      batch_(EigenBatch::shared()) {
+                             std::span<const float> weights, EigenBatch* batch)
+    : recon_(mean, eigen, layout, max_components) {
   const int h = recon_.height(), w = recon_.width();
-  ramp_ = upload_rgba8(256, 1, look_.ramp.data(), true);
+  ramp_ = upload_rgba8(256, 1, look.ramp.data(), true);
   glBindTexture(GL_TEXTURE_2D, ramp_.get());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  EigenSpriteJob& j = job_;
+  j.recon = &recon_;
+  j.weights = weights;
+  j.ramp = ramp_.get();
+  j.brightness = look.brightness;
+  j.glow_strength = look.glow_strength;
+  j.edge_fade = look.edge_fade;
   // Glow at half size, padded by its radius on every side.
   const int half_w = (w + 1) / 2, half_h = (h + 1) / 2;
-  radius_ = std::clamp(static_cast<int>(std::ceil(look_.glow_radius * half_h)), 1, 32);
-  glow_w_ = half_w + 2 * radius_;
-  glow_h_ = half_h + 2 * radius_;
+  const int radius = std::clamp(static_cast<int>(std::ceil(look.glow_radius * half_h)), 1, 32);
+  j.glow_w = half_w + 2 * radius;
+  j.glow_h = half_h + 2 * radius;
   // Gaussian taps (sigma = radius / 2), paired for bilinear fetches: one
   // fetch between texels i and i + 1 reads both with the right weights.
   {
-    const double sigma = std::max(0.5, radius_ * 0.5);
+    const double sigma = std::max(0.5, radius * 0.5);
     auto g = [&](int i) { return std::exp(-0.5 * i * i / (sigma * sigma)); };
     double total = g(0);
-    for (int i = 1; i <= radius_; ++i) total += 2 * g(i);
-    tap_offset_[0] = 0;
-    tap_weight_[0] = static_cast<float>(g(0) / total);
-    taps_ = 1;
-    for (int i = 1; i <= radius_ && taps_ < kMaxTaps; i += 2) {
-      const double a = g(i), b = i + 1 <= radius_ ? g(i + 1) : 0.0;
-      tap_offset_[static_cast<size_t>(taps_)] = static_cast<float>((i * a + (i + 1) * b) / (a + b));
-      tap_weight_[static_cast<size_t>(taps_)] = static_cast<float>((a + b) / total);
-      ++taps_;
+    for (int i = 1; i <= radius; ++i) total += 2 * g(i);
+    j.tap_offset[0] = 0;
+    j.tap_weight[0] = static_cast<float>(g(0) / total);
+    j.taps = 1;
+    for (int i = 1; i <= radius && j.taps < EigenSpriteJob::kMaxTaps; i += 2) {
+      const double a = g(i), b = i + 1 <= radius ? g(i + 1) : 0.0;
+      j.tap_offset[static_cast<size_t>(j.taps)] =
+          static_cast<float>((i * a + (i + 1) * b) / (a + b));
+      j.tap_weight[static_cast<size_t>(j.taps)] = static_cast<float>((a + b) / total);
+      ++j.taps;
     }
   }
   // The glow's colour: twice the ramp's colour at mid gray, so a dim glow
   // matches the coloured flame. (The HLS ramp now keeps luma, so its mid gray
   // is a little lighter and less saturated than the pure hue was.)
-  glow_tint_ = {look_.ramp[128 * 4] * (2.0f / 255), look_.ramp[128 * 4 + 1] * (2.0f / 255),
-                look_.ramp[128 * 4 + 2] * (2.0f / 255)};
-  margin_x_ = look_.glow_strength > 0 ? static_cast<float>(radius_) / half_w : 0.0f;
-  margin_y_ = look_.glow_strength > 0 ? static_cast<float>(radius_) / half_h : 0.0f;
-  sprite_w_ = w + 2 * static_cast<int>(std::lround(margin_x_ * w));
-  sprite_h_ = h + 2 * static_cast<int>(std::lround(margin_y_ * h));
-  batch_->add(this);
+  j.glow_tint = {look.ramp[128 * 4] * (2.0f / 255), look.ramp[128 * 4 + 1] * (2.0f / 255),
+                 look.ramp[128 * 4 + 2] * (2.0f / 255)};
+  j.margin_x = look.glow_strength > 0 ? static_cast<float>(radius) / half_w : 0.0f;
+  j.margin_y = look.glow_strength > 0 ? static_cast<float>(radius) / half_h : 0.0f;
+  j.sprite_w = w + 2 * static_cast<int>(std::lround(j.margin_x * w));
+  j.sprite_h = h + 2 * static_cast<int>(std::lround(j.margin_y * h));
+  if (!batch) {
+    own_batch_ = std::make_unique<EigenBatch>();
+    batch = own_batch_.get();
+  }
+  batch_ = batch;
+  batch_->add(&job_);
 }
 
-EigenRenderer::~EigenRenderer() { batch_->remove(this); }
+EigenRenderer::~EigenRenderer() { batch_->remove(&job_); }
 
-void EigenRenderer::prepare(uint64_t frame, int screen_w, int screen_h) {
-  batch_->prepare(frame, screen_w, screen_h);
-}
+void EigenRenderer::prepare() { batch_->render(); }
 
 void EigenRenderer::composite(const Mat4& view, const Mat4& view_projection,
                               const FlamePose& pose) {
@@ -227,13 +181,13 @@ void EigenRenderer::composite(const Mat4& view, const Mat4& view_projection,
   glUniform3f(u.origin, pose.origin.x, pose.origin.y, pose.origin.z);
   glUniform3f(u.right, right.x, right.y, right.z);
   glUniform2f(u.size, pose.height * aspect * pose.widen, pose.height);
-  glUniform4f(u.margin, margin_x_, margin_x_, margin_y_, margin_y_);
+  glUniform4f(u.margin, job_.margin_x, job_.margin_x, job_.margin_y, job_.margin_y);
   glUniform2fv(u.shape, FlamePose::kShapeRows + 1, pose.shape.data());
   glUniform1f(u.base, pose.base);
   glUniform1f(u.height, pose.height_factor);
   glUniform1i(u.deform, pose.deform ? 1 : 0);
-  glUniform4f(u.sprite_rect, static_cast<float>(sprite_x_), static_cast<float>(sprite_y_),
-              static_cast<float>(sprite_w_), static_cast<float>(sprite_h_));
+  glUniform4f(u.sprite_rect, static_cast<float>(job_.sprite_x), static_cast<float>(job_.sprite_y),
+              static_cast<float>(job_.sprite_w), static_cast<float>(job_.sprite_h));
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, batch_->sprite_atlas());
   glUniform1i(u.sprite, 0);
@@ -252,18 +206,6 @@ void EigenRenderer::composite(const Mat4& view, const Mat4& view_projection,
 
 // ---------------------------------------------------------------------------
 
-std::shared_ptr<EigenBatch> EigenBatch::shared() {
-  // One batch for all flames alive at once (one scene, one GL context); a
-  // later scene gets a fresh one once the last flame of the old one is gone.
-  static std::weak_ptr<EigenBatch> current;
-  auto b = current.lock();
-  if (!b) {
-    b = std::make_shared<EigenBatch>();
-    current = b;
-  }
-  return b;
-}
-
 EigenBatch::EigenBatch() {
   glow_ = Program::from_library("fullscreen.vert", "eigenflame_glow.frag");
   ug_.source = glow_.uniform("u_source");
@@ -274,11 +216,9 @@ EigenBatch::EigenBatch() {
   ug_.weight = glow_.uniform("u_weight");
   ug_.clamp_rect = glow_.uniform("u_src_rect");
   ug_.mask = glow_.uniform("u_mask");
-  flame_ = Program::from_source(
-      "eigenflame.vert",
-      with_defines(shader("eigenflame.vert"),
-                   "#define SHAPE_ROWS " + std::to_string(FlamePose::kShapeRows) + "\n"),
-      "eigenflame.frag", shader("eigenflame.frag"));
+  flame_ =
+      Program::from_library("eigenflame.vert", "eigenflame.frag",
+                            "#define SHAPE_ROWS " + std::to_string(FlamePose::kShapeRows) + "\n");
   const auto u = [&](const char* n) { return flame_.uniform(n); };
   uf_ = {u("u_view_projection"), u("u_origin"), u("u_right"),      u("u_size"),
          u("u_margin"),          u("u_shape"),  u("u_base"),       u("u_height"),
@@ -323,13 +263,13 @@ EigenBatch::EigenBatch() {
   fullscreen_vao_ = make_vertex_array();
 }
 
-void EigenBatch::add(EigenRenderer* r) {
-  members_.push_back(r);
+void EigenBatch::add(EigenSpriteJob* job) {
+  members_.push_back(job);
   laid_out_ = false;
 }
 
-void EigenBatch::remove(EigenRenderer* r) {
-  members_.erase(std::remove(members_.begin(), members_.end(), r), members_.end());
+void EigenBatch::remove(EigenSpriteJob* job) {
+  members_.erase(std::remove(members_.begin(), members_.end(), job), members_.end());
   laid_out_ = false;
 }
 
@@ -339,108 +279,117 @@ void EigenBatch::layout() {
   auto pack = [&](auto size_of, auto place, int& atlas_w, int& atlas_h) {
     int x = 0, y = 0, shelf = 0;
     atlas_w = atlas_h = 1;
-    for (EigenRenderer* r : members_) {
-      const auto [w, h] = size_of(r);
+    for (EigenSpriteJob* j : members_) {
+      const auto [w, h] = size_of(*j);
       if (x > 0 && x + w > kMaxRow) x = 0, y += shelf + kGap, shelf = 0;
-      place(r, x, y);
+      place(*j, x, y);
       atlas_w = std::max(atlas_w, x + w);
       atlas_h = std::max(atlas_h, y + h);
       shelf = std::max(shelf, h);
       x += w + kGap;
     }
   };
+  int gray_w = 0, gray_h = 0, glow_w = 0, glow_h = 0, sprite_w = 0, sprite_h = 0;
   pack(
-      [](EigenRenderer* r) {
-        return std::pair{r->recon_.width(), r->recon_.height()};
+      [](const EigenSpriteJob& j) {
+        return std::pair{j.recon->width(), j.recon->height()};
       },
-      [](EigenRenderer* r, int x, int y) { r->gray_x_ = x, r->gray_y_ = y; }, gray_w_, gray_h_);
+      [](EigenSpriteJob& j, int x, int y) { j.gray_x = x, j.gray_y = y; }, gray_w, gray_h);
   pack(
-      [](EigenRenderer* r) {
-        return std::pair{r->glow_w_, r->glow_h_};
+      [](const EigenSpriteJob& j) {
+        return std::pair{j.glow_w, j.glow_h};
       },
-      [](EigenRenderer* r, int x, int y) { r->glow_x_ = x, r->glow_y_ = y; }, glow_w_, glow_h_);
+      [](EigenSpriteJob& j, int x, int y) { j.glow_x = x, j.glow_y = y; }, glow_w, glow_h);
   pack(
-      [](EigenRenderer* r) {
-        return std::pair{r->sprite_w_, r->sprite_h_};
+      [](const EigenSpriteJob& j) {
+        return std::pair{j.sprite_w, j.sprite_h};
       },
-      [](EigenRenderer* r, int x, int y) { r->sprite_x_ = x, r->sprite_y_ = y; }, sprite_w_,
-      sprite_h_);
-  gray_ = make_target(gray_w_, gray_h_);
-  glow_a_ = make_target(glow_w_, glow_h_);
-  glow_b_ = make_target(glow_w_, glow_h_);
-  fbo_gray_ = make_fbo_for(gray_, "reconstruction atlas");
-  fbo_a_ = make_fbo_for(glow_a_, "glow atlas");
-  fbo_b_ = make_fbo_for(glow_b_, "glow atlas");
-  sprite_ = make_target(sprite_w_, sprite_h_);
-  fbo_sprite_ = make_fbo_for(sprite_, "sprite atlas");
+      [](EigenSpriteJob& j, int x, int y) { j.sprite_x = x, j.sprite_y = y; }, sprite_w, sprite_h);
+  gray_ = RenderTarget::checked(gray_w, gray_h, "eigenflame: reconstruction atlas");
+  glow_a_ = RenderTarget::checked(glow_w, glow_h, "eigenflame: glow atlas");
+  glow_b_ = RenderTarget::checked(glow_w, glow_h, "eigenflame: glow atlas");
+  sprite_ = RenderTarget::checked(sprite_w, sprite_h, "eigenflame: sprite atlas");
+  for (EigenSpriteJob* j : members_) j->drawn_valid = false;  // new atlases: draw everyone
   laid_out_ = true;
 }
 
-void EigenBatch::prepare(uint64_t frame, int screen_w, int screen_h) {
-  if (frame == last_frame_ && laid_out_) return;  // done for this frame already
-  last_frame_ = frame;
-  const BoundFramebuffer caller;
+void EigenBatch::render() {
   if (!laid_out_) layout();
+  // Only flames whose weights differ from those their sprite shows (the
+  // output depends on nothing else that changes): with a model frame held
+  // between its 30 fps steps, most frames redraw few flames or none.
+  bool any = false;
+  for (EigenSpriteJob* j : members_) {
+    const size_t n = std::min(j->weights.size(), static_cast<size_t>(j->recon->components()));
+    j->redraw = !j->drawn_valid ||
+                !std::equal(j->weights.begin(), j->weights.begin() + n, j->drawn.begin());
+    if (j->redraw) std::copy_n(j->weights.begin(), n, j->drawn.begin());
+    j->drawn_valid = true;
+    any = any || j->redraw;
+  }
+  if (!any) return;
+  const FramebufferRestore caller;
   // 1. Every flame's reconstruction into the gray atlas.
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_gray_.get());
-  for (EigenRenderer* r : members_) r->recon_.draw_at(r->weights_, r->gray_x_, r->gray_y_);
+  gray_.bind();
+  for (EigenSpriteJob* j : members_)
+    if (j->redraw) j->recon->draw_at(j->weights, j->gray_x, j->gray_y);
   // 2. Glow, horizontal then vertical, each flame in its own region.
   glow_.use();
   glUniform1i(ug_.source, 0);
   glBindVertexArray(fullscreen_vao_.get());
   for (int pass = 0; pass < 2; ++pass) {
-    glBindFramebuffer(GL_FRAMEBUFFER, pass == 0 ? fbo_a_.get() : fbo_b_.get());
+    (pass == 0 ? glow_a_ : glow_b_).bind();
     glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, pass == 0 ? gray_.get() : glow_a_.get());
+    glBindTexture(GL_TEXTURE_2D, pass == 0 ? gray_.texture() : glow_a_.texture());
     glUniform1i(ug_.mask, pass == 0 ? 1 : 0);
-    for (EigenRenderer* r : members_) {
-      if (r->look_.glow_strength <= 0) continue;
-      glViewport(r->glow_x_, r->glow_y_, r->glow_w_, r->glow_h_);
-      glUniform1i(ug_.taps, r->taps_);
-      glUniform1fv(ug_.offset, r->taps_, r->tap_offset_.data());
-      glUniform1fv(ug_.weight, r->taps_, r->tap_weight_.data());
+    for (EigenSpriteJob* j : members_) {
+      if (j->glow_strength <= 0 || !j->redraw) continue;
+      glViewport(j->glow_x, j->glow_y, j->glow_w, j->glow_h);
+      glUniform1i(ug_.taps, j->taps);
+      glUniform1fv(ug_.offset, j->taps, j->tap_offset.data());
+      glUniform1fv(ug_.weight, j->taps, j->tap_weight.data());
       if (pass == 0) {  // from the gray image (flame uv), one glow texel per step
-        const float mx = r->margin_x_, my = r->margin_y_;
+        const float mx = j->margin_x, my = j->margin_y;
         glUniform4f(ug_.map, 1 + 2 * mx, 1 + 2 * my, -mx, -my);
-        glUniform2f(ug_.step, (1 + 2 * mx) / r->glow_w_, 0.0f);
-        glUniform4f(ug_.clamp_rect, static_cast<float>(r->gray_x_), static_cast<float>(r->gray_y_),
-                    static_cast<float>(r->recon_.width()), static_cast<float>(r->recon_.height()));
+        glUniform2f(ug_.step, (1 + 2 * mx) / j->glow_w, 0.0f);
+        glUniform4f(ug_.clamp_rect, static_cast<float>(j->gray_x), static_cast<float>(j->gray_y),
+                    static_cast<float>(j->recon->width()), static_cast<float>(j->recon->height()));
       } else {
         glUniform4f(ug_.map, 1, 1, 0, 0);
-        glUniform2f(ug_.step, 0.0f, 1.0f / r->glow_h_);
-        glUniform4f(ug_.clamp_rect, static_cast<float>(r->glow_x_), static_cast<float>(r->glow_y_),
-                    static_cast<float>(r->glow_w_), static_cast<float>(r->glow_h_));
+        glUniform2f(ug_.step, 0.0f, 1.0f / j->glow_h);
+        glUniform4f(ug_.clamp_rect, static_cast<float>(j->glow_x), static_cast<float>(j->glow_y),
+                    static_cast<float>(j->glow_w), static_cast<float>(j->glow_h));
       }
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
   }
   // 3. Each flame's finished sprite: coloured flame + glow.
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_sprite_.get());
+  sprite_.bind();
   sprite_program_.use();
   glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, gray_.get());
+  glBindTexture(GL_TEXTURE_2D, gray_.texture());
   glUniform1i(us_.gray, 0);
   glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_2D, glow_b_.get());
+  glBindTexture(GL_TEXTURE_2D, glow_b_.texture());
   glUniform1i(us_.glow, 1);
   glUniform1i(us_.ramp, 2);
   glActiveTexture(GL_TEXTURE2);
-  for (EigenRenderer* r : members_) {
-    glViewport(r->sprite_x_, r->sprite_y_, r->sprite_w_, r->sprite_h_);
-    glBindTexture(GL_TEXTURE_2D, r->ramp_.get());
-    glUniform4f(us_.gray_rect, static_cast<float>(r->gray_x_), static_cast<float>(r->gray_y_),
-                static_cast<float>(r->recon_.width()), static_cast<float>(r->recon_.height()));
-    glUniform4f(us_.glow_rect, static_cast<float>(r->glow_x_), static_cast<float>(r->glow_y_),
-                static_cast<float>(r->glow_w_), static_cast<float>(r->glow_h_));
-    glUniform2f(us_.margin, r->margin_x_, r->margin_y_);
-    glUniform1f(us_.brightness, r->look_.brightness);
-    glUniform1f(us_.glow_strength, r->look_.glow_strength);
-    glUniform3f(us_.glow_tint, r->glow_tint_.x, r->glow_tint_.y, r->glow_tint_.z);
-    glUniform1f(us_.edge_fade, r->look_.edge_fade);
+  for (EigenSpriteJob* j : members_) {
+    if (!j->redraw) continue;
+    glViewport(j->sprite_x, j->sprite_y, j->sprite_w, j->sprite_h);
+    glBindTexture(GL_TEXTURE_2D, j->ramp);
+    glUniform4f(us_.gray_rect, static_cast<float>(j->gray_x), static_cast<float>(j->gray_y),
+                static_cast<float>(j->recon->width()), static_cast<float>(j->recon->height()));
+    glUniform4f(us_.glow_rect, static_cast<float>(j->glow_x), static_cast<float>(j->glow_y),
+                static_cast<float>(j->glow_w), static_cast<float>(j->glow_h));
+    glUniform2f(us_.margin, j->margin_x, j->margin_y);
+    glUniform1f(us_.brightness, j->brightness);
+    glUniform1f(us_.glow_strength, j->glow_strength);
+    glUniform3f(us_.glow_tint, j->glow_tint.x, j->glow_tint.y, j->glow_tint.z);
+    glUniform1f(us_.edge_fade, j->edge_fade);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
   glActiveTexture(GL_TEXTURE0);
-  caller.restore(screen_w, screen_h);
 }
 
 namespace {

@@ -16,7 +16,9 @@
 
 #include "gl/math.h"
 #include "gl/program.h"
+#include "gl/render_target.h"
 #include "gl/texture.h"
+#include "scene/element.h"
 
 namespace candela {
 
@@ -45,8 +47,8 @@ class EigenReconstructor {
   void reconstruct(std::span<const float> weights);
   // Renders into the bound framebuffer at (x, y), model-sized.
   void draw_at(std::span<const float> weights, int x, int y);
-  GLuint texture() const { return target_.get(); }
-  GLuint framebuffer() const { return fbo_.get(); }
+  GLuint texture() const { return target_.texture(); }
+  GLuint framebuffer() const { return target_.framebuffer(); }
   int width() const { return width_; }
   int height() const { return height_; }
   int components() const { return components_; }
@@ -54,8 +56,8 @@ class EigenReconstructor {
  private:
   int width_, height_, components_, entries_, layers_;
   Program program_;
-  Texture stack_, target_;
-  Framebuffer fbo_;
+  Texture stack_;
+  RenderTarget target_;
   VertexArray vao_;
   GLint u_stack_, u_layers_, u_coef_, u_bias_, u_origin_;
   std::array<float, 4 * (kMaxComponents / 4 + 2)> coef_{};
@@ -87,53 +89,78 @@ struct FlamePose {
 
 class EigenBatch;
 
+// One flame's share of the batch's offscreen work: what it reconstructs, how
+// its glow and colour are made, and (set by the batch's layout) where it
+// lies in the atlases. Its EigenRenderer fills it in and owns it.
+struct EigenSpriteJob {
+  EigenReconstructor* recon = nullptr;
+  std::span<const float> weights;  // read at every prepare
+  GLuint ramp = 0;                 // 256x1 colour ramp texture
+  float brightness = 1, glow_strength = 0, edge_fade = 0;
+  int glow_w = 0, glow_h = 0;          // half size, padded by the glow's radius
+  static constexpr int kMaxTaps = 17;  // eigenflame_glow.frag's MAX_TAPS
+  int taps = 1;                        // centre + bilinear pairs
+  std::array<float, kMaxTaps> tap_offset{}, tap_weight{};
+  Vec3 glow_tint;
+  float margin_x = 0, margin_y = 0;  // glow margin, flame uv
+  int sprite_w = 0, sprite_h = 0;
+  // Places in the atlases (EigenBatch's layout).
+  int gray_x = 0, gray_y = 0, glow_x = 0, glow_y = 0, sprite_x = 0, sprite_y = 0;
+  // The weights its sprite in the atlas shows (EigenBatch::render redraws
+  // only flames whose weights changed: a held model frame costs nothing).
+  std::array<float, EigenReconstructor::kMaxComponents> drawn{};
+  bool drawn_valid = false, redraw = true;
+};
+
 // One flame's GPU side. Its offscreen work (reconstruction, glow, the
 // finished sprite) is done by an EigenBatch together with every other
-// eigen-flame's, in shared atlas textures: four render-target switches per
-// frame however many flames (each makes llvmpipe and tiled GPUs flush). The
-// billboard then costs one bilinear fetch per screen pixel.
+// eigen-flame's of the scene, in shared atlas textures: four render-target
+// switches per frame however many flames (each makes llvmpipe and tiled GPUs
+// flush). The billboard then costs one bilinear fetch per screen pixel.
 class EigenRenderer {
  public:
-  // `weights` must stay valid (the element's own array); read at prepare().
+  // `weights` must stay valid (the element's own array); read at every
+  // prepare. `batch`: the batch this flame's offscreen work joins (in a
+  // scene, the scene's: SceneResources::get<EigenBatch>()), which must
+  // outlive the renderer; null: a batch of its own (one flame alone, as a
+  // tool draws it).
   EigenRenderer(const ImageStack& mean, const ImageStack& eigen, StackLayout layout,
-                int max_components, const FlameLookSettings& look, std::span<const float> weights);
+                int max_components, const FlameLookSettings& look, std::span<const float> weights,
+                EigenBatch* batch = nullptr);
   ~EigenRenderer();
   EigenRenderer(const EigenRenderer&) = delete;
   EigenRenderer& operator=(const EigenRenderer&) = delete;
 
-  // Offscreen work of all flames (done by the first caller in a frame); call
-  // in the first drawing pass. Restores the caller's framebuffer and viewport.
-  void prepare(uint64_t frame, int screen_w, int screen_h);
+  // The offscreen work of this flame's batch (every member's): call once a
+  // frame before drawing into the screen. Restores the caller's framebuffer
+  // and viewport. In a scene the scene does this, once for the shared batch.
+  void prepare();
   // Adds the flame and its glow onto the bound framebuffer.
   void composite(const Mat4& view, const Mat4& view_projection, const FlamePose& pose);
   const EigenReconstructor& reconstructor() const { return recon_; }
 
  private:
-  friend class EigenBatch;
   EigenReconstructor recon_;
-  FlameLookSettings look_;
-  std::span<const float> weights_;
-  std::shared_ptr<EigenBatch> batch_;
   Texture ramp_;
-  int glow_w_ = 0, glow_h_ = 0, radius_ = 0;
-  int sprite_w_ = 0, sprite_h_ = 0;
-  static constexpr int kMaxTaps = 17;  // eigenflame_glow.frag's MAX_TAPS
-  int taps_ = 1;                       // centre + bilinear pairs
-  std::array<float, kMaxTaps> tap_offset_{}, tap_weight_{};
-  Vec3 glow_tint_;
-  float margin_x_ = 0, margin_y_ = 0;  // glow margin, flame uv
-  // Places in the atlases.
-  int gray_x_ = 0, gray_y_ = 0, glow_x_ = 0, glow_y_ = 0, sprite_x_ = 0, sprite_y_ = 0;
+  EigenSpriteJob job_;
+  std::unique_ptr<EigenBatch> own_batch_;  // when made without a shared one
+  EigenBatch* batch_;
 };
 
-// The shared offscreen stage of every live eigen-flame.
-class EigenBatch {
+// The shared offscreen stage of a scene's eigen-flames (a SceneResource: the
+// scene prepares it once per frame, after every element's prepare).
+class EigenBatch final : public SceneResource {
  public:
-  static std::shared_ptr<EigenBatch> shared();
-  void add(EigenRenderer* r);
-  void remove(EigenRenderer* r);
-  void prepare(uint64_t frame, int screen_w, int screen_h);
-  GLuint sprite_atlas() const { return sprite_.get(); }
+  EigenBatch();
+  void add(EigenSpriteJob* job);
+  void remove(EigenSpriteJob* job);
+  // Every member's reconstruction, glow and sprite into the atlases, for
+  // the members whose weights changed since they were last drawn. Restores
+  // the caller's framebuffer and viewport.
+  void render();
+  void prepare(const FrameContext&) override { render(); }
+
+  GLuint sprite_atlas() const { return sprite_.texture(); }
   const Program& flame_program() const { return flame_; }
   GLuint grid_vao() const { return grid_vao_.get(); }
   GLsizei grid_indices() const { return grid_indices_; }
@@ -142,16 +169,11 @@ class EigenBatch {
   };
   const FlameUniforms& flame_uniforms() const { return uf_; }
 
-  EigenBatch();
-
  private:
   void layout();
-  std::vector<EigenRenderer*> members_;
+  std::vector<EigenSpriteJob*> members_;
   bool laid_out_ = false;
-  uint64_t last_frame_ = ~uint64_t{0};
-  int gray_w_ = 0, gray_h_ = 0, glow_w_ = 0, glow_h_ = 0, sprite_w_ = 0, sprite_h_ = 0;
-  Texture gray_, glow_a_, glow_b_, sprite_;
-  Framebuffer fbo_gray_, fbo_a_, fbo_b_, fbo_sprite_;
+  RenderTarget gray_, glow_a_, glow_b_, sprite_;
   Program glow_, sprite_program_, flame_;
   VertexArray fullscreen_vao_, grid_vao_;
   Buffer grid_vbo_, grid_ibo_;

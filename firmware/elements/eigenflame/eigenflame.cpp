@@ -11,16 +11,13 @@
 #include "core/log.h"
 #include "elements/eigenflame/arp_driver.h"
 #include "elements/eigenflame/flame_shape.h"
+#include "embedded_models.h"
 #include "gl/program.h"
 #include "model/flame_model.h"
 #include "scene/params.h"
 #include "story/story_plan.h"
 #include "story/story_player.h"
 #include "wind/wind_field.h"
-
-namespace candela::eigen_models {
-std::string_view find(std::string_view name);
-}
 
 namespace candela {
 namespace {
@@ -117,9 +114,11 @@ std::vector<Vec3> parse_transfer(ParamReader& r) {
 
 class EigenFlame final : public Element {
  public:
+  // `batch`: the scene's, shared with its other eigen-flames (null: one of its own).
   EigenFlame(const EigenFlameSettings& s, std::shared_ptr<const EigenModel> model, Vec3 position,
-             uint64_t seed, std::shared_ptr<const story::StoryDesc> story = nullptr)
-      : s_(s), model_(std::move(model)), position_(position) {
+             uint64_t seed, EigenBatch* batch,
+             std::shared_ptr<const story::StoryDesc> story = nullptr)
+      : s_(s), model_(std::move(model)), position_(position), own_batch_(batch == nullptr) {
     const model::FlameModel& m = *model_->model;
     const double fps = m.clips.empty() ? 30.0 : m.clips.front().fps;
     // Model frames per animation step (60 steps per second; the step length is known in update).
@@ -143,7 +142,7 @@ class EigenFlame final : public Element {
           story::plan_story(*story, m, story->has_seed ? story->seed : seed, true);
       story_ = std::make_unique<story::StoryPlayer>(plan, m.components(), Fixed::from_ratio(1, 2));
       renderer_ = std::make_unique<EigenRenderer>(stack_of(m.mean), stack_of(m.eigen), s.layout, e,
-                                                  look, story_->weights());
+                                                  look, story_->weights(), batch);
     } else if (s.driver == EigenDriver::kArp && m.has_learning_flames) {
       const auto& L = m.flames;
       shape_ = std::make_unique<FlameShapeModel>(FlameShapeModel::from(m));
@@ -157,7 +156,8 @@ class EigenFlame final : public Element {
       shown_ = prev_;
       renderer_ = std::make_unique<EigenRenderer>(
           stack_of(L.mean), stack_of(L.eigen), s.layout, L.ne, look,
-          std::span<const float>(shown_.data() + L.np + L.nw + 1, static_cast<size_t>(L.ne)));
+          std::span<const float>(shown_.data() + L.np + L.nw + 1, static_cast<size_t>(L.ne)),
+          batch);
     } else {
       if (s.driver == EigenDriver::kArp)
         LOG_WARN("eigenflame: %s has no Learning Flames part; playing its motion graph instead",
@@ -167,7 +167,7 @@ class EigenFlame final : public Element {
       player_ = std::make_unique<GraphPlayer>(std::move(walker), m.weights, m.components(),
                                               Fixed::from_ratio(1, 2));
       renderer_ = std::make_unique<EigenRenderer>(stack_of(m.mean), stack_of(m.eigen), s.layout, e,
-                                                  look, player_->weights());
+                                                  look, player_->weights(), batch);
     }
     if (s.embers.enabled) {
       embers_ = Program::from_library("floor_quad.vert", "eigenflame_embers.frag");
@@ -218,14 +218,15 @@ class EigenFlame final : public Element {
   // comes from the hearth it burns on.
   void add_sound_cue(SoundCue& cue) const override { cue.wind = std::max(cue.wind, abs(wind_x_)); }
 
+  // The flame's offscreen work (reconstruction, glow, sprite) is its
+  // batch's: in a scene, the scene prepares the shared batch once per frame
+  // for all its eigen-flames (a SceneResource); made without one, the flame
+  // prepares its own.
+  void prepare(const FrameContext&) override {
+    if (own_batch_) renderer_->prepare();
+  }
+
   void draw(const FrameContext& f, DrawPass pass) override {
-    if (pass == DrawPass::kBackground) {
-      renderer_->prepare(f.frame, f.width, f.height);
-      return;
-    }
-    // Embers go after every element's offscreen work (kBackground), so the
-    // screen's framebuffer is left and re-entered once per frame, not once per
-    // flame (on tilers and llvmpipe each re-entry stores and reloads it).
     if (pass == DrawPass::kBody && embers_.id()) draw_embers(f);
     if (pass != DrawPass::kFlame) return;
     FlamePose pose;
@@ -260,6 +261,7 @@ class EigenFlame final : public Element {
   EigenFlameSettings s_;
   std::shared_ptr<const EigenModel> model_;
   Vec3 position_;
+  bool own_batch_;
   Fixed fps_, lean_, phase_, time_, wind_x_;
   std::unique_ptr<GraphPlayer> player_;
   std::unique_ptr<story::StoryPlayer> story_;
@@ -304,8 +306,9 @@ std::shared_ptr<const EigenModel> builtin_eigen_model(const std::string& name) {
 std::shared_ptr<const EigenModel> default_eigen_model() { return builtin_eigen_model("default"); }
 
 std::unique_ptr<Element> EigenFlameSpec::create(const SceneContext& context) const {
+  EigenBatch* batch = context.resources ? &context.resources->get<EigenBatch>() : nullptr;
   try {
-    return std::make_unique<EigenFlame>(settings, model, position, context.seed, story);
+    return std::make_unique<EigenFlame>(settings, model, position, context.seed, batch, story);
   } catch (const std::exception& e) {
     // A model the reader accepted but this GPU cannot hold (texture size, ...):
     // play the built-in one rather than leave the flame out.
@@ -314,7 +317,7 @@ std::unique_ptr<Element> EigenFlameSpec::create(const SceneContext& context) con
     LOG_ERROR(
         "%s: eigenflame: model %s cannot be played here (%s); using the built-in default model",
         context.scene_file.c_str(), model->source.c_str(), e.what());
-    return std::make_unique<EigenFlame>(settings, fallback, position, context.seed);
+    return std::make_unique<EigenFlame>(settings, fallback, position, context.seed, batch);
   }
 }
 

@@ -184,13 +184,16 @@ class Hearth final : public Element {
   // before any fire element's flame pass; logs at the front of the bed go in
   // the overlay pass, after the flames, so they hide the flames' feet as
   // front logs do (a fire element draws no depth).
+  // The cache of what the view alone decides (refresh_cache), when the view
+  // or the screen's size changed.
+  void prepare(const FrameContext& f) override { refresh_cache(f); }
+
   void draw(const FrameContext& f, DrawPass pass) override {
     if (pass == DrawPass::kOverlay) {
       draw_logs(f, back_count_, log_count_ - back_count_);
       return;
     }
     if (pass != DrawPass::kBody) return;
-    refresh_cache(f);
     const float t = static_cast<float>(time_.to_double());
     const Vec3 lc = s_.light * (s_.light_strength * flicker_.to_float());
     // The bed first, flat on the floor; then the logs over it, depth-tested
@@ -238,11 +241,9 @@ class Hearth final : public Element {
     CacheKey key;
     std::copy(std::begin(f.view_projection.m), std::end(f.view_projection.m),
               key.view_projection.begin());
-    glGetIntegerv(GL_VIEWPORT, key.viewport.data());
+    key.viewport = {0, 0, f.width, f.height};  // the draw passes' (scene/element.h)
     if (cache_valid_ && key == cache_key_) return;
     const int w = std::max(1, key.viewport[2]), h = std::max(1, key.viewport[3]);
-    GLint caller = 0;
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &caller);
     if (!cache_valid_ || w != cache_key_.viewport[2] || h != cache_key_.viewport[3])
       make_cache(w, h);
     cache_key_ = key;
@@ -279,8 +280,6 @@ class Hearth final : public Element {
       glDisable(GL_DEPTH_TEST);
     }
     glBindVertexArray(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(caller));
-    glViewport(key.viewport[0], key.viewport[1], key.viewport[2], key.viewport[3]);
   }
 
   static Texture make_cache_texture(GLenum format, int w, int h) {

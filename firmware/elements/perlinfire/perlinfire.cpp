@@ -15,27 +15,16 @@
 #include "elements/perlinfire/noise_tables.h"
 #include "elements/perlinfire/quality_governor.h"
 #include "gl/program.h"
+#include "gl/render_target.h"
 #include "gl/texture.h"
 #include "scene/params.h"
 #include "wind/wind_field.h"
-
-namespace candela::shaders {
-std::string_view find(std::string_view name);
-}
 
 namespace candela {
 namespace {
 
 constexpr int kMaxOctaves = 8;
 constexpr double kTwoPi = 6.283185307179586;
-
-std::string_view drop_version_line(std::string_view src) {
-  if (src.starts_with("#version")) {
-    const auto nl = src.find('\n');
-    return nl == std::string_view::npos ? std::string_view{} : src.substr(nl + 1);
-  }
-  return src;
-}
 
 // Where the noise's offsets wrap: the 3-D noise repeats every 768 lattice
 // units, so its offsets wrap without a seam; the 4-D noise has no period, so
@@ -84,8 +73,6 @@ struct FireSettings {
   double target_fps = 30;
   float min_scale = 0.25f;
 };
-
-Program make_composite_program(FireShading shading);
 
 // GL texture set-up shared by the tables.
 Texture make_table_texture(GLenum internal, GLenum format, GLenum type, const void* data) {
@@ -147,16 +134,14 @@ class PerlinFire final : public Element {
                                                std::min(s.min_scale, s.quality.scale)),
                   governor_settings(s)),
         breath_(seed ^ 0x62726561746865ULL) {
-    static constexpr const char* kKindDefine[] = {"simplex3d", "flow3d", "simplex4d", "perlin4d"};
-    const auto body = shaders::find("perlinfire.frag");
-    if (body.empty()) throw RuntimeError("gles_shaders/perlinfire.frag: not built in");
-    const auto vert = shaders::find("perlinfire.vert");
-    if (vert.empty()) throw RuntimeError("gles_shaders/perlinfire.vert: not built in");
-    program_ = Program::from_source("perlinfire.vert", vert,
-                                    std::string("perlinfire_noise.frag + perlinfire.frag (") +
-                                        kKindDefine[static_cast<int>(s.noise)] + ")",
-                                    perlinfire_fragment_source(body, s.noise, s.shading));
-    composite_ = make_composite_program(s.shading);
+    program_ = Program::from_library("perlinfire.vert",
+                                     {"perlinfire_noise.frag", "fire_ramp.frag", "perlinfire.frag"},
+                                     perlinfire_defines(s.noise, s.shading));
+    // The upscaling pass: the ramp (sheets colour after upscaling), then the composite.
+    composite_ =
+        Program::from_library("fullscreen.vert", {"fire_ramp.frag", "perlinfire_composite.frag"},
+                              "#define PF_SHADING " + std::to_string(static_cast<int>(s.shading)) +
+                                  "\nprecision highp float;\n");
     vao_ = make_vertex_array();
     locate_uniforms();
 
@@ -212,49 +197,82 @@ class PerlinFire final : public Element {
     cue.wind = std::max(cue.wind, wind_speed_);
   }
 
-  void draw(const FrameContext& f, DrawPass pass) override {
-    if (pass != DrawPass::kFlame) return;
+  // This frame's quality and where the fire lies on screen; at a reduced
+  // render scale, the march into the offscreen target (composited onto the
+  // screen in the flame pass).
+  void prepare(const FrameContext& f) override {
     if (s_.auto_quality && f.last_frame_ms > 0) governor_.add_frame(f.last_frame_ms);
-    const QualityLevel q = s_.auto_quality ? governor_.current() : s_.quality;
+    quality_ = s_.auto_quality ? governor_.current() : s_.quality;
     if (uniforms_dirty_) compute_octave_uniforms();
 
     // The march box: the unit volume widened on the side the flame leans to.
     const float lx = lean_x_.to_float(), lz = lean_z_.to_float();
-    const Vec3 box_min{-0.5f + std::min(0.0f, lx), 0.0f, -0.5f + std::min(0.0f, lz)};
-    const Vec3 box_max{0.5f + std::max(0.0f, lx), 1.0f, 0.5f + std::max(0.0f, lz)};
+    box_min_ = {-0.5f + std::min(0.0f, lx), 0.0f, -0.5f + std::min(0.0f, lz)};
+    box_max_ = {0.5f + std::max(0.0f, lx), 1.0f, 0.5f + std::max(0.0f, lz)};
     const Mat4 model = Mat4::translate(position_) * Mat4::scale(s_.size);
-    const Mat4 mvp = f.view_projection * model;
-    int rect[4];
-    if (!screen_rect(mvp, box_min, box_max, f.width, f.height, rect)) return;
+    mvp_ = f.view_projection * model;
+    visible_ = screen_rect(mvp_, box_min_, box_max_, f.width, f.height, rect_);
+    offscreen_ = quality_.scale < 0.999f;
+    if (!visible_ || !offscreen_) return;
 
-    const bool offscreen = q.scale < 0.999f;
-    GLint prev_fbo = 0;
-    int sub_w = f.width, sub_h = f.height;
-    if (offscreen) {
-      glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev_fbo);
-      ensure_target(f.width, f.height);
-      sub_w = std::max(1, static_cast<int>(std::lround(f.width * q.scale)));
-      sub_h = std::max(1, static_cast<int>(std::lround(f.height * q.scale)));
-      glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
-      glViewport(0, 0, sub_w, sub_h);
-      glEnable(GL_SCISSOR_TEST);
-      const float sx = static_cast<float>(sub_w) / f.width,
-                  sy = static_cast<float>(sub_h) / f.height;
-      const int x0 = std::max(0, static_cast<int>(std::floor(rect[0] * sx)) - 1);
-      const int y0 = std::max(0, static_cast<int>(std::floor(rect[1] * sy)) - 1);
-      // One texel past the part in use is cleared too: filtering reads it.
-      const int x1 = std::min(target_w_, static_cast<int>(std::ceil(rect[2] * sx)) + 2);
-      const int y1 = std::min(target_h_, static_cast<int>(std::ceil(rect[3] * sy)) + 2);
-      glScissor(x0, y0, x1 - x0, y1 - y0);
-      glClearColor(0, 0, 0, 0);
-      glClear(GL_COLOR_BUFFER_BIT);
-      glDisable(GL_BLEND);
+    const FramebufferRestore screen;
+    ensure_target(f.width, f.height);
+    sub_w_ = std::max(1, static_cast<int>(std::lround(f.width * quality_.scale)));
+    sub_h_ = std::max(1, static_cast<int>(std::lround(f.height * quality_.scale)));
+    target_.bind();
+    glViewport(0, 0, sub_w_, sub_h_);
+    glEnable(GL_SCISSOR_TEST);
+    const float sx = static_cast<float>(sub_w_) / f.width,
+                sy = static_cast<float>(sub_h_) / f.height;
+    const int x0 = std::max(0, static_cast<int>(std::floor(rect_[0] * sx)) - 1);
+    const int y0 = std::max(0, static_cast<int>(std::floor(rect_[1] * sy)) - 1);
+    // One texel past the part in use is cleared too: filtering reads it.
+    const int x1 = std::min(target_.width(), static_cast<int>(std::ceil(rect_[2] * sx)) + 2);
+    const int y1 = std::min(target_.height(), static_cast<int>(std::ceil(rect_[3] * sy)) + 2);
+    glScissor(x0, y0, x1 - x0, y1 - y0);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDisable(GL_BLEND);
+    march(f);
+    glDisable(GL_SCISSOR_TEST);
+    glDepthMask(GL_TRUE);
+    glActiveTexture(GL_TEXTURE0);
+  }
+
+  void draw(const FrameContext& f, DrawPass pass) override {
+    if (pass != DrawPass::kFlame || !visible_) return;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(rect_[0], rect_[1], rect_[2] - rect_[0], rect_[3] - rect_[1]);
+    set_blend();
+    if (offscreen_) {
+      composite_.use();
+      glUniform2f(u_.uv_per_pixel, static_cast<float>(sub_w_) / f.width / target_.width(),
+                  static_cast<float>(sub_h_) / f.height / target_.height());
+      glUniform3f(u_.composite_color, s_.color.x, s_.color.y, s_.color.z);
+      bind_texture(4, target_.texture(), u_.image);
+      glDisable(GL_DEPTH_TEST);
+      glDisable(GL_CULL_FACE);
+      glDepthMask(GL_FALSE);
+      glBindVertexArray(vao_.get());
+      glDrawArrays(GL_TRIANGLES, 0, 3);
     } else {
-      glEnable(GL_SCISSOR_TEST);
-      glScissor(rect[0], rect[1], rect[2] - rect[0], rect[3] - rect[1]);
-      set_blend();
+      march(f);
     }
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    glActiveTexture(GL_TEXTURE0);
+  }
 
+ private:
+  // The ray march through the box into the bound framebuffer (the screen,
+  // or the offscreen target at a reduced scale).
+  void march(const FrameContext& f) {
+    const QualityLevel q = quality_;
+    const bool offscreen = offscreen_;
+    const float lx = lean_x_.to_float(), lz = lean_z_.to_float();
+    const Vec3 box_min = box_min_, box_max = box_max_;
+    const Mat4& mvp = mvp_;
     program_.use();
     glUniformMatrix4fv(u_.mvp, 1, GL_FALSE, mvp.m);
     glUniform3f(u_.box_min, box_min.x, box_min.y, box_min.z);
@@ -309,10 +327,10 @@ class PerlinFire final : public Element {
     glUniform3f(u_.tongue_gap, s_.tongue_gap, s_.tongue_width, s_.tongue_base);
     glUniform1f(u_.obstacle, s_.obstacle > 0 ? s_.obstacle : -1e9f);
     glUniform3f(u_.color, s_.color.x, s_.color.y, s_.color.z);
-    bind_texture(0, perm_, u_.perm);
-    bind_texture(1, grad3_, u_.grad3);
-    bind_texture(2, grad4_, u_.grad4);
-    bind_texture(3, profile_, u_.profile);
+    bind_texture(0, perm_.get(), u_.perm);
+    bind_texture(1, grad3_.get(), u_.grad3);
+    bind_texture(2, grad4_.get(), u_.grad4);
+    bind_texture(3, profile_.get(), u_.profile);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glEnable(GL_CULL_FACE);
@@ -320,26 +338,8 @@ class PerlinFire final : public Element {
     glBindVertexArray(vao_.get());
     glDrawArrays(GL_TRIANGLES, 0, 36);
     glDisable(GL_CULL_FACE);
-
-    if (offscreen) {
-      glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(prev_fbo));
-      glViewport(0, 0, f.width, f.height);
-      glScissor(rect[0], rect[1], rect[2] - rect[0], rect[3] - rect[1]);
-      set_blend();
-      composite_.use();
-      glUniform2f(u_.uv_per_pixel, static_cast<float>(sub_w) / f.width / target_w_,
-                  static_cast<float>(sub_h) / f.height / target_h_);
-      glUniform3f(u_.composite_color, s_.color.x, s_.color.y, s_.color.z);
-      bind_texture(4, target_, u_.image);
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-    }
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_BLEND);
-    glDepthMask(GL_TRUE);
-    glActiveTexture(GL_TEXTURE0);
   }
 
- private:
   static QualityGovernor::Settings governor_settings(const FireSettings& s) {
     QualityGovernor::Settings g;
     g.budget_ms = 1000.0 / s.target_fps;
@@ -387,10 +387,10 @@ class PerlinFire final : public Element {
     u_.uv_per_pixel = composite_.uniform("u_uv_per_pixel");
   }
 
-  static void bind_texture(int unit, const Texture& t, GLint location) {
+  static void bind_texture(int unit, GLuint texture, GLint location) {
     if (location < 0) return;  // this noise kind does not read it
     glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
-    glBindTexture(GL_TEXTURE_2D, t.get());
+    glBindTexture(GL_TEXTURE_2D, texture);
     glUniform1i(location, unit);
   }
 
@@ -410,24 +410,10 @@ class PerlinFire final : public Element {
     screen_w_ = w;
     screen_h_ = h;
     const float top = s_.quality.scale;
-    target_w_ = std::max(1, static_cast<int>(std::ceil(w * top)));
-    target_h_ = std::max(1, static_cast<int>(std::ceil(h * top)));
-    if (!target_.get()) target_ = make_texture();
-    glBindTexture(GL_TEXTURE_2D, target_.get());
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, target_w_, target_h_, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-                 nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    if (!fbo_.get()) fbo_ = make_framebuffer();
-    GLint prev = 0;
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &prev);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target_.get(), 0);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      LOG_ERROR("perlinfire: offscreen target %dx%d incomplete", target_w_, target_h_);
-    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(prev));
+    target_ = RenderTarget(std::max(1, static_cast<int>(std::ceil(w * top))),
+                           std::max(1, static_cast<int>(std::ceil(h * top))));
+    if (!target_.complete())
+      LOG_ERROR("perlinfire: offscreen target %dx%d incomplete", target_.width(), target_.height());
   }
 
   // The box's pixels on screen (x0, y0, x1, y1; GL's bottom-left origin), a
@@ -506,9 +492,16 @@ class PerlinFire final : public Element {
   Program program_, composite_;
   VertexArray vao_;
   Uniforms u_{};
-  Texture perm_, grad3_, grad4_, profile_, target_;
-  Framebuffer fbo_;
-  int screen_w_ = 0, screen_h_ = 0, target_w_ = 0, target_h_ = 0;
+  Texture perm_, grad3_, grad4_, profile_;
+  RenderTarget target_;  // reduced render scales: the march, upscaled in the flame pass
+  int screen_w_ = 0, screen_h_ = 0;
+  // This frame's, from prepare(): quality, the box and where it lies on screen.
+  QualityLevel quality_;
+  Vec3 box_min_, box_max_;
+  Mat4 mvp_;
+  int rect_[4] = {0, 0, 0, 0};
+  bool visible_ = false, offscreen_ = false;
+  int sub_w_ = 1, sub_h_ = 1;
   std::array<float, kMaxOctaves> weights_{}, time4_{};
   std::array<float, kMaxOctaves * 3> offsets_{};
   std::array<float, kMaxOctaves * 2> flow_cs_{};
@@ -602,45 +595,33 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   return spec;
 }
 
-// The upscaling pass: "#define PF_SHADING", the ramp, then the composite.
-Program make_composite_program(FireShading shading) {
-  const auto vert = shaders::find("fullscreen.vert");
-  const auto ramp = shaders::find("fire_ramp.frag");
-  const auto body = shaders::find("perlinfire_composite.frag");
-  if (vert.empty() || ramp.empty() || body.empty())
-    throw RuntimeError("gles_shaders/perlinfire_composite.frag: not built in");
-  std::string src = "#version 300 es\n#define PF_SHADING " +
-                    std::to_string(static_cast<int>(shading)) + "\nprecision highp float;\n";
-  src += drop_version_line(ramp);
-  src += "\n";
-  src += drop_version_line(body);
-  return Program::from_source("fullscreen.vert", vert, "fire_ramp.frag + perlinfire_composite.frag",
-                              src);
-}
-
 }  // namespace
 
-std::string perlinfire_fragment_source(std::string_view body, FireNoise kind, FireShading shading) {
-  const auto library = shaders::find("perlinfire_noise.frag");
-  if (library.empty()) throw RuntimeError("gles_shaders/perlinfire_noise.frag: not built in");
-  const auto ramp = shaders::find("fire_ramp.frag");
-  if (ramp.empty()) throw RuntimeError("gles_shaders/fire_ramp.frag: not built in");
+std::string perlinfire_defines(FireNoise kind, FireShading shading) {
   char defines[320];
   std::snprintf(defines, sizeof defines,
-                "#version 300 es\n#define PF_NOISE_KIND %d\n#define PF_SHADING %d\n"
+                "#define PF_NOISE_KIND %d\n#define PF_SHADING %d\n"
                 "#define PF_SIMPLEX_R2 %.9g\n"
                 "#define PF_SIMPLEX3_SCALE %#.9g\n#define PF_SIMPLEX4_SCALE %#.9g\n"
                 "#define PF_PERLIN4_SCALE %#.9g\n",
                 static_cast<int>(kind), static_cast<int>(shading), NoiseConstants::kSimplexRadius2,
                 NoiseConstants::kSimplex3Scale, NoiseConstants::kSimplex4Scale,
                 NoiseConstants::kPerlin4Scale);
-  // Keep line numbers of the library in messages close: the library follows the defines.
-  std::string src = defines;
-  src += drop_version_line(library);
-  src += "\n";
-  src += drop_version_line(ramp);
-  src += "\n";
-  src += drop_version_line(body);
+  return defines;
+}
+
+std::string perlinfire_fragment_source(std::string_view body, FireNoise kind, FireShading shading) {
+  std::string src = compose_shader({"perlinfire_noise.frag", "fire_ramp.frag"},
+                                   perlinfire_defines(kind, shading));
+  // `body` is the third file: its lines numbered as in its own text, plus 200000.
+  if (body.starts_with("#version")) {
+    const auto nl = body.find('\n');
+    body = nl == std::string_view::npos ? std::string_view{} : body.substr(nl + 1);
+    src += "#line 200002\n";
+  } else {
+    src += "#line 200001\n";
+  }
+  src += body;
   return src;
 }
 

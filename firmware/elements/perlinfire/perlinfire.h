@@ -21,11 +21,15 @@ enum class FireNoise { kSimplex3d, kFlow3d, kSimplex4d, kPerlin4d };
 // paper's way: soft and gaseous).
 enum class FireShading { kProfile = 0, kSheets = 1 };
 
-// The fire's fragment shader text: "#version 300 es", the PF_* defines (noise
-// kind, shading and the constants of noise_tables.h),
-// gles_shaders/perlinfire_noise.frag, gles_shaders/fire_ramp.frag and then
-// `body` (a whole shader file; its #version line is dropped). The tests build
-// their noise probes with it too.
+// The PF_* defines of the fire's shaders: noise kind, shading and the
+// constants of noise_tables.h.
+std::string perlinfire_defines(FireNoise kind, FireShading shading);
+
+// The fire's fragment shader text around another `body` (a whole shader
+// file; its #version line is dropped): as the element builds it from
+// gles_shaders/perlinfire_noise.frag, fire_ramp.frag and perlinfire.frag
+// (compose_shader, gl/program.h), with `body` in place of perlinfire.frag.
+// The tests build their noise probes with it.
 std::string perlinfire_fragment_source(std::string_view body, FireNoise kind,
                                        FireShading shading = FireShading::kSheets);
 

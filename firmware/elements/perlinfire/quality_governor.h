@@ -18,7 +18,7 @@ struct QualityLevel {
   int steps = 24;      // ray-march steps through the volume
   int octaves = 3;     // noise octaves summed per step
   float scale = 1.0f;  // render scale (fraction of the screen's width and height)
-  friend bool operator==(const QualityLevel&, const QualityLevel&) = default;
+  bool operator==(const QualityLevel&) const = default;
 };
 
 class QualityGovernor {
