@@ -114,7 +114,7 @@ void FlameView::render(std::span<const float> weights, const Look& look, int w, 
   glViewport(0, 0, w, h);
   glClearColor(0, 0, 0, 1);  // alpha stays 1 under the additive flame: the UI shows it opaque
   glClear(GL_COLOR_BUFFER_BIT);
-  renderer_->prepare(++frame_, w, h);
+  renderer_->prepare();  // offscreen; restores our framebuffer and viewport
   FlamePose pose;
   pose.origin = {0, 0, 0};
   pose.height = 1;

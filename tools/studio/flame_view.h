@@ -48,7 +48,6 @@ class FlameView {
   Texture colour_;
   Framebuffer fbo_;
   int w_ = 0, h_ = 0;
-  uint64_t frame_ = 0;
   PixelRect image_;
 };
 

@@ -314,6 +314,9 @@ void EigenBatch::layout() {
 }
 
 void EigenBatch::render() {
+  // First: layout() binds the atlases it makes, and the caller's framebuffer
+  // (the studio's view, the scene's screen) must be the one given back.
+  const FramebufferRestore caller;
   if (!laid_out_) layout();
   // Only flames whose weights differ from those their sprite shows (the
   // output depends on nothing else that changes): with a model frame held
@@ -328,7 +331,6 @@ void EigenBatch::render() {
     any = any || j->redraw;
   }
   if (!any) return;
-  const FramebufferRestore caller;
   // 1. Every flame's reconstruction into the gray atlas.
   gray_.bind();
   for (EigenSpriteJob* j : members_)
