@@ -37,10 +37,6 @@ std::unique_ptr<Display> headless(int w, int h) {
   return open_display(o);
 }
 
-ImageStack stack_of(const model::QuantisedImages& q) {
-  return {q.dtype == model::DType::kU16, q.count, q.width, q.height, q.data, q.scale, q.offset};
-}
-
 // The default model with its eigen-images requantised to 16 bits.
 model::FlameModel sixteen_bit_copy(const model::FlameModel& m) {
   model::ModelWriter w;
@@ -64,7 +60,7 @@ struct Diff {
 // GPU reconstruction of stored frames vs FlameModel::reconstruct (clamped to
 // 0..255, as an 8-bit target holds it), in gray levels.
 Diff compare_reconstruction(const model::FlameModel& m, StackLayout layout) {
-  EigenReconstructor r(stack_of(m.mean), stack_of(m.eigen), layout, m.components());
+  EigenReconstructor r(image_stack_of(m.mean), image_stack_of(m.eigen), layout, m.components());
   const size_t px = m.mean.pixels();
   std::vector<float> cpu(px);
   std::vector<uint8_t> gpu(px * 4);
@@ -287,7 +283,8 @@ TEST(EigenStory, GpuFramesMatchTheToolsReconstruction) {
   const story::StoryPlan plan = story::plan_story(desc, m, desc.seed, true);
   story::StoryPlayer player(plan, m.components(), Fixed::from_int(1));
   player.set_crossfade(Fixed{});
-  EigenReconstructor r(stack_of(m.mean), stack_of(m.eigen), StackLayout::kPacked, m.components());
+  EigenReconstructor r(image_stack_of(m.mean), image_stack_of(m.eigen), StackLayout::kPacked,
+                       m.components());
   const size_t px = m.mean.pixels();
   std::vector<float> cpu(px);
   std::vector<uint8_t> gpu(px * 4);

@@ -12,18 +12,6 @@
 namespace candela::studio {
 namespace {
 
-ImageStack stack_of(const model::QuantisedImages& q) {
-  ImageStack s;
-  s.u16 = q.dtype == model::DType::kU16;
-  s.count = q.count;
-  s.width = q.width;
-  s.height = q.height;
-  s.data = q.data;
-  s.scale = q.scale;
-  s.offset = q.offset;
-  return s;
-}
-
 Mat4 ortho(float l, float r, float b, float t) {
   Mat4 m;
   m.m[0] = 2 / (r - l);
@@ -68,25 +56,14 @@ void FlameView::render(std::span<const float> weights, const Look& look, int w, 
     s.glow_radius = std::max(0.02f, look.glow_radius);  // as the element clamps the model's
     s.glow_strength = look.glow_strength;
     renderer_.reset();  // first: the shared batch is laid out afresh for the new one
-    renderer_ =
-        std::make_unique<EigenRenderer>(stack_of(m.mean), stack_of(m.eigen), StackLayout::kPacked,
-                                        EigenReconstructor::kMaxComponents, s, weights_);
+    renderer_ = std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen),
+                                                StackLayout::kPacked,
+                                                EigenReconstructor::kMaxComponents, s, weights_);
     look_ = look;
     have_look_ = true;
   }
   if (w != w_ || h != h_) {
-    colour_ = make_texture();
-    glBindTexture(GL_TEXTURE_2D, colour_.get());
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    fbo_ = make_framebuffer();
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour_.get(), 0);
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw RuntimeError("studio: the flame view's framebuffer is incomplete");
+    target_ = RenderTarget::checked(w, h, "studio: the flame view");
     w_ = w;
     h_ = h;
   }
@@ -110,7 +87,7 @@ void FlameView::render(std::span<const float> weights, const Look& look, int w, 
             static_cast<int>(std::lround((hi - 1) * px)), static_cast<int>(std::lround(a * px)),
             static_cast<int>(std::lround(px))};
 
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+  target_.bind();
   glViewport(0, 0, w, h);
   glClearColor(0, 0, 0, 1);  // alpha stays 1 under the additive flame: the UI shows it opaque
   glClear(GL_COLOR_BUFFER_BIT);

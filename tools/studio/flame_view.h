@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gl/gles.h"
+#include "gl/render_target.h"
 #include "gl/texture.h"
 #include "look.h"
 
@@ -33,7 +34,7 @@ class FlameView {
   // a changed look re-makes the renderer: its ramp and glow are fixed at
   // construction). Leaves the default framebuffer bound.
   void render(std::span<const float> weights, const Look& look, int w, int h);
-  GLuint texture() const { return colour_.get(); }
+  GLuint texture() const { return target_.texture(); }
   int width() const { return w_; }
   int height() const { return h_; }
   // Where the model's image lies in the texture (top-left origin, pixels).
@@ -45,8 +46,7 @@ class FlameView {
   Look look_{};
   bool have_look_ = false;
   std::vector<float> weights_;  // what the renderer reads at prepare()
-  Texture colour_;
-  Framebuffer fbo_;
+  RenderTarget target_;
   int w_ = 0, h_ = 0;
   PixelRect image_;
 };

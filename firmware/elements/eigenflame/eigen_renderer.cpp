@@ -6,8 +6,14 @@
 #include <vector>
 
 #include "core/error.h"
+#include "model/flame_model.h"
 
 namespace candela {
+
+ImageStack image_stack_of(const model::QuantisedImages& q) {
+  return {q.dtype == model::DType::kU16, q.count, q.width, q.height, q.data, q.scale, q.offset};
+}
+
 namespace {
 
 constexpr int kGridColumns = 8;

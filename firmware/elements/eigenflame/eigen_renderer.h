@@ -31,6 +31,12 @@ struct ImageStack {
   std::span<const float> scale, offset;
 };
 
+namespace model {
+struct QuantisedImages;
+}
+// The view of a model's images (the one adapter from model/ to the renderer).
+ImageStack image_stack_of(const model::QuantisedImages& q);
+
 // How the stack is laid out on the GPU: four components per RGBA texel
 // (packed) or one per layer of a texture array (layered).
 enum class StackLayout { kPacked, kLayered };

@@ -24,18 +24,6 @@ namespace {
 
 constexpr float kLabelLean = 0.05f;  // image widths a wind-left/right label adds to a frame's lean
 
-ImageStack stack_of(const model::QuantisedImages& q) {
-  ImageStack s;
-  s.u16 = q.dtype == model::DType::kU16;
-  s.count = q.count;
-  s.width = q.width;
-  s.height = q.height;
-  s.data = q.data;
-  s.scale = q.scale;
-  s.offset = q.offset;
-  return s;
-}
-
 // Each frame's lean: the intensity-weighted centroid x of its reconstruction,
 // in image widths from the centre, relative to the calm frames' median.
 // Linear in the weights, so per-component sums make this O(frames x E).
@@ -141,8 +129,8 @@ class EigenFlame final : public Element {
       const story::StoryPlan plan =
           story::plan_story(*story, m, story->has_seed ? story->seed : seed, true);
       story_ = std::make_unique<story::StoryPlayer>(plan, m.components(), Fixed::from_ratio(1, 2));
-      renderer_ = std::make_unique<EigenRenderer>(stack_of(m.mean), stack_of(m.eigen), s.layout, e,
-                                                  look, story_->weights(), batch);
+      renderer_ = std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen),
+                                                  s.layout, e, look, story_->weights(), batch);
     } else if (s.driver == EigenDriver::kArp && m.has_learning_flames) {
       const auto& L = m.flames;
       shape_ = std::make_unique<FlameShapeModel>(FlameShapeModel::from(m));
@@ -155,7 +143,7 @@ class EigenFlame final : public Element {
       std::copy(s1.begin(), s1.end(), next_.begin());
       shown_ = prev_;
       renderer_ = std::make_unique<EigenRenderer>(
-          stack_of(L.mean), stack_of(L.eigen), s.layout, L.ne, look,
+          image_stack_of(L.mean), image_stack_of(L.eigen), s.layout, L.ne, look,
           std::span<const float>(shown_.data() + L.np + L.nw + 1, static_cast<size_t>(L.ne)),
           batch);
     } else {
@@ -166,8 +154,8 @@ class EigenFlame final : public Element {
       GraphWalker walker(g, m.weights, m.components(), model_->lean, s.walk, seed);
       player_ = std::make_unique<GraphPlayer>(std::move(walker), m.weights, m.components(),
                                               Fixed::from_ratio(1, 2));
-      renderer_ = std::make_unique<EigenRenderer>(stack_of(m.mean), stack_of(m.eigen), s.layout, e,
-                                                  look, player_->weights(), batch);
+      renderer_ = std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen),
+                                                  s.layout, e, look, player_->weights(), batch);
     }
     if (s.embers.enabled) {
       embers_ = Program::from_library("floor_quad.vert", "eigenflame_embers.frag");
