@@ -4,6 +4,7 @@
 #include <fftw3.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -430,6 +431,31 @@ TEST(EigenColour, HlsRampKeepsTheGrayAsLuma) {
     EXPECT_GT(mid[0] - mid[2], 100) << "hue " << hue;
     EXPECT_EQ(ramp[255 * 4 + 2], 255);
   }
+}
+
+TEST(EigenColour, HueTopTurnsTheBrightBodyYellowAndKeepsTheEdgesOrange) {
+  // Real fires are deep orange where dim and yellow where bright (the shared
+  // fire clips: about 15 degrees up to mid gray, about 50 near white); a ramp
+  // from hue 16 to hue_top 56 does that, and its gray is still the luma.
+  auto hue_of = [](const uint8_t* c) {
+    const double r = c[0], g = c[1], b = c[2], mx = std::max({r, g, b}), mn = std::min({r, g, b});
+    if (mx - mn < 1) return 0.0;
+    return mx == r ? 60.0 * (g - b) / (mx - mn) : mx == g ? 60.0 * (2 + (b - r) / (mx - mn)) : 0.0;
+  };
+  const auto fixed = candela::hls_ramp(16, 0.9f, 0);
+  const auto ramp = candela::hls_ramp(16, 0.9f, 0, 56);
+  for (int i = 0; i < 256; ++i) {
+    const uint8_t* c = &ramp[static_cast<size_t>(i) * 4];
+    EXPECT_NEAR(0.299 * c[0] + 0.587 * c[1] + 0.114 * c[2], i, 1.5) << "gray " << i;
+  }
+  // Dim edges: the same deep orange as a fixed hue (within a few degrees).
+  EXPECT_NEAR(hue_of(&ramp[60 * 4]), hue_of(&fixed[60 * 4]), 3.0);
+  EXPECT_LT(hue_of(&ramp[60 * 4]), 20.0);
+  // The bright body: yellow (hue well above the fixed ramp's), green above red.
+  EXPECT_GT(hue_of(&ramp[225 * 4]), 38.0);
+  EXPECT_GT(hue_of(&ramp[225 * 4]), hue_of(&fixed[225 * 4]) + 15.0);
+  // No hue at all: the old ramp exactly.
+  EXPECT_EQ(candela::hls_ramp(26, 0.95f, 0), candela::hls_ramp(26, 0.95f, 0, 26));
 }
 
 }  // namespace

@@ -407,9 +407,12 @@ double lightness(int i, float black) {
 }
 }  // namespace
 
-std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation, float black) {
+std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation, float black,
+                                      float hue_top_deg) {
   std::array<uint8_t, 256 * 4> r{};
-  const double h = std::fmod(hue_deg, 360.0) / 360.0, s = std::clamp(saturation, 0.0f, 1.0f);
+  const double h_dark = std::fmod(hue_deg, 360.0) / 360.0, s = std::clamp(saturation, 0.0f, 1.0f);
+  const double h_top = std::isfinite(hue_top_deg) ? std::fmod(hue_top_deg, 360.0) / 360.0 : h_dark;
+  double h = h_dark;
   auto channel = [](double p, double q, double t) {
     if (t < 0) t += 1;
     if (t > 1) t -= 1;
@@ -432,6 +435,7 @@ std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation, float bla
     // orange flame's luma up to a third darker than its gray). Luma rises
     // with lightness, so bisect.
     const double want = lightness(i, black);
+    h = h_dark + (h_top - h_dark) * want * want * want;
     double lo = 0, hi = 1, rgb[3];
     for (int it = 0; it < 30; ++it) {
       const double mid = 0.5 * (lo + hi);

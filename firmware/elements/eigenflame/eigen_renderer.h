@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -199,7 +200,12 @@ class EigenBatch final : public SceneResource {
 // luma equals the gray (the paper takes gray as the lightness, which darkens
 // an orange flame's edges and core). Gray at or below `black` (0..255) is
 // black: it hides the faint reconstruction noise around the flame.
-std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation, float black = 0);
+// `hue_top_deg` (NaN: the same hue throughout) is the hue at full brightness;
+// the hue moves to it with the cube of the gray, as real fires' colour does
+// (measured on the shared fire clips: about 15 degrees, deep orange, up to mid
+// gray, then up to about 50, yellow, where the picture nears white).
+std::array<uint8_t, 256 * 4> hls_ramp(float hue_deg, float saturation, float black = 0,
+                                      float hue_top_deg = std::numeric_limits<float>::quiet_NaN());
 // A transfer function through evenly spaced colour stops (at least two).
 std::array<uint8_t, 256 * 4> transfer_ramp(std::span<const Vec3> stops, float black = 0);
 

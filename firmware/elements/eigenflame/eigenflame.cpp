@@ -115,8 +115,8 @@ class EigenFlame final : public Element {
     const float hue = s.has_hue ? s.hue : m.colour.hue;
     const float sat = s.has_saturation ? s.saturation : m.colour.saturation;
     const float black = m.colour.black_level;
-    look.ramp =
-        s.transfer.size() >= 2 ? transfer_ramp(s.transfer, black) : hls_ramp(hue, sat, black);
+    look.ramp = s.transfer.size() >= 2 ? transfer_ramp(s.transfer, black)
+                                       : hls_ramp(hue, sat, black, s.has_hue_top ? s.hue_top : hue);
     look.brightness = s.brightness;
     look.glow_radius = s.has_glow_radius ? s.glow_radius : std::max(0.02f, m.colour.glow_radius);
     look.glow_strength = s.has_glow_strength ? s.glow_strength : m.colour.glow_strength;
@@ -346,6 +346,8 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
   s.edge_fade = static_cast<float>(r.number("edge_fade", s.edge_fade, 0, 0.5));
   s.has_hue = r.has("hue");
   s.hue = static_cast<float>(r.number("hue", s.hue, 0, 360));
+  s.has_hue_top = r.has("hue_top");
+  s.hue_top = static_cast<float>(r.number("hue_top", s.hue_top, 0, 360));
   s.has_saturation = r.has("saturation");
   s.saturation = static_cast<float>(r.number("saturation", s.saturation, 0, 1));
   s.transfer = parse_transfer(r);

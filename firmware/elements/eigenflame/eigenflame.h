@@ -22,6 +22,8 @@
 //                              # 0 holds each frame as a video player does, 1 blends all the
 //                              # way (soft, ghosted tongues); a little hides the steps
 //   hue = 28                   # HLS colour: gray is the lightness (defaults: the model's)
+//   hue_top = 50               # the hue at full brightness (default: hue); it moves there
+//                              # with the cube of the gray: deep orange edges, yellow core
 //   saturation = 0.9
 //   transfer = "#000000 #8a1800 #ff8020 #fff0c0"  # or a transfer function (even stops)
 //   brightness = 1.0
@@ -87,8 +89,9 @@ struct EigenFlameSettings {
   StackLayout layout = StackLayout::kPacked;
   Fixed speed = Fixed::from_int(1);
   Fixed crossfade = Fixed::from_ratio(1, 4);
-  bool has_hue = false, has_saturation = false, has_glow_radius = false, has_glow_strength = false;
-  float hue = 28, saturation = 0.9f;
+  bool has_hue = false, has_hue_top = false, has_saturation = false, has_glow_radius = false,
+       has_glow_strength = false;
+  float hue = 28, hue_top = 28, saturation = 0.9f;
   std::vector<Vec3> transfer;  // non-empty: overrides HLS
   float brightness = 1.0f;
   float glow_radius = 0.12f, glow_strength = 0.6f;
