@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds and runs every test twice: a normal build (build/) and an
-# AddressSanitizer + UndefinedBehaviorSanitizer build (build-asan/). The
+# Builds and runs every test three times: a normal build (build/), a clang
+# Release build against libgpiod 2 (build-gpiod2/) and an AddressSanitizer +
+# UndefinedBehaviorSanitizer build (build-asan/); then the fuzz targets. The
 # virtual-board tests (label "board", slow under emulation) and the slow pure
 # numerics (label "numeric") run in the normal build only.
 set -euo pipefail
