@@ -97,6 +97,49 @@ TEST(EigenReconstruction, GpuMatchesCpuForStoredFrames) {
     }
 }
 
+// A model of footage keeps an EigenFire per frame (a 20 s clip at 25 fps:
+// 500), so that it plays back as filmed: the GPU sums every one of them,
+// not only the first 256 (the cap until a model of one's own footage came
+// to play back blurred). Here the picture is carried by components past 256
+// alone: leaving them out would leave a flat gray.
+TEST(EigenReconstruction, GpuSumsEveryComponentOfALongClipsModel) {
+  auto display = headless(64, 64);
+  constexpr int kW = 24, kH = 20, kCount = model::kMaxPlayedComponents - 12;
+  static_assert(kCount > 256);
+  constexpr size_t kPx = static_cast<size_t>(kW) * kH;
+  std::vector<float> mean(kPx, 40.0f), eig(static_cast<size_t>(kCount) * kPx);
+  for (int k = 0; k < kCount; ++k)  // each component a stripe pattern of its own
+    for (size_t p = 0; p < kPx; ++p)
+      eig[k * kPx + p] = static_cast<float>(std::sin(0.37 * (k + 1) * static_cast<double>(p % kW) +
+                                                     0.11 * k * static_cast<double>(p / kW)));
+  const auto qm = model::quantise_images(mean.data(), 1, kPx, model::DType::kU16);
+  const auto qe = model::quantise_images(eig.data(), kCount, kPx, model::DType::kU16);
+  const auto view = [&](const model::QuantisedSet& q, int count) {
+    return model::QuantisedImages{q.dtype, count, kW, kH, q.bytes.data(), q.scale, q.offset};
+  };
+  const model::QuantisedImages mq = view(qm, 1), eq = view(qe, kCount);
+  std::vector<float> w(kCount, 0.0f);
+  for (int k = 300; k < kCount; k += 17) w[static_cast<size_t>(k)] = 30.0f / (1 + (k % 5));
+  for (StackLayout layout : {StackLayout::kPacked, StackLayout::kLayered}) {
+    EigenReconstructor r(image_stack_of(mq), image_stack_of(eq), layout, kCount);
+    EXPECT_EQ(r.components(), kCount);
+    r.reconstruct(w);
+    std::vector<uint8_t> gpu(kPx * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, kW, kH, GL_RGBA, GL_UNSIGNED_BYTE, gpu.data());
+    double worst = 0, spread = 0;
+    for (size_t p = 0; p < kPx; ++p) {
+      double cpu = mq.value(0, p);
+      for (int k = 0; k < kCount; ++k) cpu += w[static_cast<size_t>(k)] * eq.value(k, p);
+      cpu = std::clamp(cpu, 0.0, 255.0);
+      worst = std::max(worst, std::abs(gpu[p * 4] - cpu));
+      spread = std::max(spread, std::abs(cpu - 40.0));
+    }
+    EXPECT_GT(spread, 20.0) << "the late components must carry a picture";
+    EXPECT_LE(worst, 2.0) << (layout == StackLayout::kPacked ? "packed" : "layered");
+  }
+}
+
 // Intensity-weighted centroid x of a frame read back from the GL framebuffer.
 double centroid_x(const std::vector<uint8_t>& rgba, int w, int h) {
   double s0 = 0, s1 = 0;

@@ -114,6 +114,29 @@ TEST(Pca, HeldOutProjectionIsTheLeastSquaresFit) {
   }
 }
 
+TEST(Pca, AsManyComponentsAsAskedPastTheVarianceCap) {
+  // `build --components N` is a user's exact request: a model of a 500-frame
+  // clip asked for 499 EigenFires got 128 (max_components, the cap meant for
+  // --variance), and played back visibly blurred. --variance stays capped.
+  // 150 frames of 24x24 noise, centred: they span 149 dimensions.
+  const int w = 24, h = 24, frames = 150;
+  std::vector<uint8_t> px(static_cast<size_t>(w) * h * frames);
+  uint32_t state = 99;
+  for (auto& v : px) {
+    state = state * 1664525u + 1013904223u;
+    v = static_cast<uint8_t>(state >> 24);
+  }
+  ct::PcaOptions o;
+  o.components = 140;  // above max_components (128 by default)
+  ASSERT_LT(o.max_components, o.components);
+  EXPECT_EQ(ct::pca_snapshot(px.data(), w, h, frames, o).components(), 140);
+  o.components = 0;
+  o.variance = 0.999;  // would need about 149
+  EXPECT_EQ(ct::pca_snapshot(px.data(), w, h, frames, o).components(), o.max_components);
+  o.components = 400;  // more than the frames span: all they span
+  EXPECT_EQ(ct::pca_snapshot(px.data(), w, h, frames, o).components(), frames - 1);
+}
+
 #ifdef _OPENMP
 TEST(Pca, SameBytesOnAnyNumberOfThreads) {
   // A model is an asset that goes into the repository: building it again from

@@ -104,10 +104,13 @@ PcaResult pca_snapshot(const uint8_t* pixels, int width, int height, int frame_c
     double acc = 0;
     while (e < rank && acc < opt.variance * r.total_variance) acc += r.variance[e++];
   }
-  e = std::clamp(e, 1,
-                 std::max(1, std::min({rank, opt.max_components > 0 ? opt.max_components : rank,
-                                       opt.components > 0 ? opt.components : rank})));
-  e = std::min(e, rank);
+  // max_components caps only what --variance chooses: an explicit count is
+  // taken as asked (it was silently cut to the cap, 128, before).
+  if (opt.components <= 0 && opt.max_components > 0) e = std::min(e, opt.max_components);
+  e = std::clamp(e, 1, std::max(1, rank));
+  if (opt.components > rank)
+    say("PCA: " + std::to_string(opt.components) + " components asked, the frames span only " +
+        std::to_string(rank));
 
   // Pass 2: eigen-images U = Xc V S^-1 and the weights of all frames W = X_all^T U.
   say("PCA: " + std::to_string(e) + " eigen-images and weights of " + std::to_string(frame_count) +

@@ -19,6 +19,7 @@
 #include "gl/program.h"
 #include "gl/render_target.h"
 #include "gl/texture.h"
+#include "model/flame_model.h"
 #include "scene/element.h"
 
 namespace candela {
@@ -45,7 +46,7 @@ enum class StackLayout { kPacked, kLayered };
 // Step 1 alone (also what the tests compare with the CPU reconstruction).
 class EigenReconstructor {
  public:
-  static constexpr int kMaxComponents = 256;
+  static constexpr int kMaxComponents = model::kMaxPlayedComponents;
 
   // Uploads mean and the first min(eigen.count, max_components) eigen-images.
   EigenReconstructor(const ImageStack& mean, const ImageStack& eigen, StackLayout layout,

@@ -25,6 +25,7 @@
 #include "core/fixed.h"
 #include "core/random.h"
 #include "elements/eigenflame/no_repeat_guard.h"
+#include "model/flame_model.h"
 
 namespace candela {
 
@@ -96,7 +97,7 @@ float fade(Fixed phase, Fixed crossfade);
 // two, low-passes across jumps and interpolates between frames.
 class GraphPlayer {
  public:
-  static constexpr int kMaxComponents = 256;
+  static constexpr int kMaxComponents = model::kMaxPlayedComponents;
 
   GraphPlayer(GraphWalker walker, std::span<const float> weights, int components,
               Fixed frames_per_step);
