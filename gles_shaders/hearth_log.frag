@@ -1,11 +1,12 @@
 #version 300 es
 // A burning log's static look, rendered once into the hearth's cache (see
-// hearth.cpp): bark in long ridges, charred black where the fire licks it
-// (the top and the side facing the fire) with cracks in the char, pale end
-// grain with rings and a burnt rim. Out: the unlit colour (RGB10_A2) and the
-// cracks' glow (two 8-bit halves) with their pulse's two hashes.
-// hearth_log_shade.frag lights it and pulses the cracks every frame, so the
-// noise here runs only when the view changes.
+// hearth.cpp): rough bark in deep, ragged furrows along the log; charred
+// black where the fire licks it (the top and the side facing the fire) and
+// along its underside over the coals, the char broken into blocks whose
+// cracks glow; pale end grain with rings and a burnt rim. Out: the unlit
+// colour (RGB10_A2) and the cracks' glow (two 8-bit halves) with their
+// pulse's two hashes. hearth_log_shade.frag lights it and pulses the cracks
+// every frame, so the noise here runs only when the view changes.
 precision highp float;
 
 in vec3 v_world;
@@ -31,6 +32,27 @@ float noise(vec2 p) {
 }
 float fbm(vec2 p) { return 0.55 * noise(p) + 0.3 * noise(p * 2.1 + 7.0) + 0.15 * noise(p * 4.3 + 3.0); }
 
+// Char blocks: distance to the nearest cell border of a jittered grid (the
+// cracks) and the cell's own hash (each block burns and pulses on its own).
+vec2 char_cells(vec2 p) {
+  vec2 i = floor(p), f = fract(p);
+  float d1 = 8.0, d2 = 8.0, id = 0.0;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x) {
+      vec2 g = vec2(float(x), float(y));
+      vec2 o = g + 0.15 + 0.7 * vec2(hash(i + g), hash(i + g + 17.0)) - f;
+      float d = dot(o, o);
+      if (d < d1) {
+        d2 = d1;
+        d1 = d;
+        id = hash(i + g + 5.0);
+      } else if (d < d2) {
+        d2 = d;
+      }
+    }
+  return vec2(sqrt(d2) - sqrt(d1), id);
+}
+
 void main() {
   vec3 n = normalize(v_normal);
   float facing = max(dot(n, normalize(u_light_pos - v_world)), 0.0);
@@ -43,20 +65,34 @@ void main() {
     colour = mix(vec3(0.42, 0.3, 0.19), vec3(0.3, 0.2, 0.12), rings) * (1.0 - 0.85 * smoothstep(0.6, 0.95, r));
   } else {
     vec2 q = vec2(v_log.y * 14.0 + v_seed, v_log.x * 5.0);
-    float ridges = fbm(vec2(q.x * 1.6, q.y * 0.35));  // long furrows along the log
-    colour = u_bark * (0.45 + 0.8 * ridges);
-    // Char: where the fire reaches (up, and towards the light), with crackle.
-    float heat = clamp(facing * 0.7 + n.y * 0.5, 0.0, 1.0);
-    float crack_field = fbm(q * 1.3 + vec2(0.0, v_seed));
-    float char_amount = smoothstep(0.6, 0.95, heat + 0.35 * (crack_field - 0.5));
-    colour = mix(colour, vec3(0.07, 0.055, 0.045), char_amount);
-    // Cracks in the char: thin bands of a cellular-ish field, glowing.
-    float c = abs(fbm(q * 2.2 + 11.0) - 0.5);
-    float patches = smoothstep(0.45, 0.75, fbm(q * 0.6 + 23.0));  // glowing only in places
-    float crack = smoothstep(0.035, 0.0, c) * char_amount * patches;
+    // Bark: ragged ridges between deep furrows, running along the log (q.y),
+    // with fine grain and lichen-pale flecks on the ridges.
+    // Bark plates: ridges broken along the log, not endless stripes.
+    float ridge = 1.0 - abs(2.0 * fbm(vec2(q.x * 2.2, q.y * 0.7) + 0.6 * noise(q * vec2(0.7, 0.35))) - 1.0);
+    float plates = smoothstep(0.3, 0.7, fbm(vec2(q.x * 1.3 + 5.0, q.y * 1.6)));
+    float furrow = smoothstep(0.4, 0.85, ridge) * (0.45 + 0.55 * plates);
+    float grain = noise(vec2(q.x * 9.0, q.y * 1.2));
+    // Weathered bark is grayer than the wood beneath it.
+    vec3 bark = mix(u_bark, vec3(dot(u_bark, vec3(0.3, 0.5, 0.2))), 0.35);
+    colour = bark * (0.15 + 1.1 * furrow) * (0.75 + 0.5 * grain);
+    colour += vec3(0.05, 0.047, 0.04) * smoothstep(0.72, 0.95, noise(q * vec2(3.0, 0.8) + 41.0)) * furrow;
+    // Char: where the fire reaches (up, and towards the light) and along the
+    // underside that lies on the coals, with a ragged edge.
+    float edge = 0.4 * (fbm(q * 1.1 + vec2(0.0, v_seed)) - 0.5);
+    float above = clamp(facing * 0.7 + n.y * 0.5, 0.0, 1.0);
+    float below = smoothstep(-0.05, -0.55, n.y);
+    float char_amount = max(smoothstep(0.45, 0.8, above + edge), smoothstep(0.3, 0.8, below + edge));
+    vec2 cell = char_cells(vec2(q.x * 1.4, q.y * 0.9));
+    // The blocks: dull black with a faint sheen, darker toward their cracks.
+    vec3 char_colour = vec3(0.05, 0.042, 0.036) * (0.7 + 0.6 * cell.y) * smoothstep(0.0, 0.12, cell.x);
+    colour = mix(colour, char_colour, char_amount);
+    // Cracks between the blocks glow, hottest underneath and where the fire
+    // licks; not every crack at once.
+    float crack = smoothstep(0.06, 0.0, cell.x) * char_amount;
+    crack *= smoothstep(0.25, 0.6, fbm(q * 0.5 + 23.0) + 0.35 * below);
     // 16 bits over two channels: the glow is bright, 8 would band it.
     float hi = floor(crack * 255.0) / 255.0;
-    o_crack = vec4(hi, (crack - hi) * 255.0, hash(floor(q * 2.0)), hash(floor(q * 2.0) + 5.0));
+    o_crack = vec4(hi, (crack - hi) * 255.0, cell.y, hash(vec2(cell.y * 91.0, 3.0)));
   }
   o_colour = vec4(colour, 1.0);
 }

@@ -25,6 +25,8 @@ void main() {
   float d2 = dot(to_light, to_light);
   float facing = max(dot(n, normalize(to_light)), 0.0);
   vec3 lit = u_light.rgb * (0.45 + 2.2 * facing) / (1.0 + d2 * 2.0);
+  // The coals under the logs light their undersides and lower flanks.
+  lit += u_light.rgb * vec3(1.0, 0.6, 0.35) * (0.55 * u_light.w * max(-n.y + 0.3, 0.0));
   float crack = k.x + k.y * (1.0 / 255.0);
   float pulse = 0.6 + 0.4 * sin(u_time * (1.3 + k.z * 2.0) + k.w * 6.28);
   float glow = crack * pulse * u_light.w;
