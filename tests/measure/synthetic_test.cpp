@@ -294,3 +294,60 @@ TEST(MeasureErrors, FrameLimitAndSizeLimitHold) {
   EXPECT_THROW(cm::load_frames(d.string(), l), candela::ConfigError);
   fs::remove_all(d);
 }
+
+namespace {
+
+// A "clip" with given features and a brightness series (noise of a given
+// spectral colour), enough for judge().
+cm::Measured made_up(double iso, double parts, double beta, unsigned seed) {
+  cm::Measured m;
+  m.fps = 30;
+  m.features.tau_s = 0.03;
+  m.features.sharp = 0.08;
+  m.features.spat_slope = -2.8;
+  m.features.iso = iso;
+  m.features.parts = parts;
+  m.features.area_cv = 0.06;
+  m.features.core = 0.1;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g;
+  const int n = 600;
+  std::vector<double> x(n, 0.0);
+  double a = 0, b = 0;
+  for (int i = 0; i < n; ++i) {  // a leaky sum: redder as beta grows
+    a = beta * a + g(rng);
+    b = 0.5 * b + a;
+    x[static_cast<size_t>(i)] = 100 + b;
+  }
+  m.series.I = m.series.H = m.series.X = m.series.W = x;
+  return m;
+}
+
+}  // namespace
+
+TEST(MeasureJudge, AModelOfOneClipIsJudgedAgainstThatClip) {
+  // Three real clips; the model of the first sits just beyond the range on
+  // iso (as its source does), inside on parts.
+  const std::vector<cm::Measured> real = {made_up(21.4, 7.0, 0.9, 1), made_up(18.0, 6.4, 0.9, 2),
+                                          made_up(14.7, 6.3, 0.9, 3)};
+  const cm::Measured model = made_up(22.0, 6.6, 0.9, 4);
+  const cm::Judgement plain = cm::judge(real, model, {"iso", "parts"}, true);
+  EXPECT_FALSE(plain.features[0].inside) << "22.0 is above the real range";
+  cm::SourceJudging by{0, 0.1};
+  const cm::Judgement sourced = cm::judge(real, model, {"iso", "parts"}, true, 0.0, by);
+  EXPECT_TRUE(sourced.features[0].inside) << "within 10% of its source's 21.4";
+  EXPECT_DOUBLE_EQ(sourced.features[0].source, 21.4);
+  EXPECT_TRUE(sourced.features[1].inside);
+  // Each series is measured against the source alone, against the spread of all.
+  ASSERT_EQ(sourced.spectra.size(), 4u);
+  for (const auto& s : sourced.spectra) {
+    EXPECT_EQ(s.lsd_to_ref.size(), 1u);
+    EXPECT_DOUBLE_EQ(s.real_max, plain.spectra[0].real_max);
+  }
+  by.tolerance = 0.01;  // 22.0 is 2.8% from 21.4
+  EXPECT_FALSE(cm::judge(real, model, {"iso"}, false, 0.0, by).features[0].inside);
+  // A model whose motion is another colour of noise is not its source.
+  const cm::Measured white = made_up(21.4, 7.0, 0.0, 5);
+  const cm::Judgement far = cm::judge(real, white, {}, true, 0.0, cm::SourceJudging{0, 0.1});
+  EXPECT_FALSE(far.spectra[0].inside);
+}

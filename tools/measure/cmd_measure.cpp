@@ -200,6 +200,18 @@ int run_judge(int argc, char** argv) {
                  "(default 0: the spread itself)")
       ->check(CLI::Range(0.0, 40.0))
       ->capture_default_str();
+  std::string source;
+  cm::SourceJudging by_source;
+  app.add_option("--source", source,
+                 "DIR is a model of this one of the real clips (its name, e.g. "
+                 "campfire_night_arvideo), played back: each series is judged by its distance to "
+                 "that clip against the real clips' spread, and a feature is also inside within "
+                 "--source-tolerance of that clip's own value");
+  app.add_option("--source-tolerance", by_source.tolerance,
+                 "with --source: relative distance to the source's feature value that counts "
+                 "as inside")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   add_common(app, limits, as_json);
   if (int rc = parse(app, argc, argv); rc >= 0) return rc;
   const std::vector<std::string> names = split_list(only);
@@ -228,10 +240,25 @@ int run_judge(int argc, char** argv) {
                  against.c_str());
     return 2;
   }
+  if (!source.empty()) {
+    for (size_t i = 0; i < refs.size(); ++i) {
+      const std::filesystem::path p(refs[i].name);
+      const std::string clip_name =
+          p.filename() == "frames" ? p.parent_path().filename().string() : p.filename().string();
+      if (clip_name == source || refs[i].name == source) by_source.source = static_cast<int>(i);
+    }
+    if (by_source.source < 0) {
+      std::fprintf(
+          stderr,
+          "candela-tool measure: --source: '%s' is not one of the real clips of --against\n",
+          source.c_str());
+      return 2;
+    }
+  }
   std::vector<cm::Measured> real;
   for (const auto& r : refs) real.push_back(cm::measure_clip(r.name, r.fps, limits));
   const cm::Measured clip = cm::measure_clip(dir, fps, limits);
-  const cm::Judgement j = cm::judge(real, clip, names, !no_spectra, spectra_margin);
+  const cm::Judgement j = cm::judge(real, clip, names, !no_spectra, spectra_margin, by_source);
   const bool all = j.inside == j.of;
 
   if (as_json) {
@@ -244,6 +271,8 @@ int run_judge(int argc, char** argv) {
                                  {"real_max", num(f.real_max)},
                                  {"value", num(f.value)},
                                  {"inside", f.inside}};
+    if (by_source.source >= 0)
+      for (const auto& f : j.features) out["features"][f.name]["source"] = num(f.source);
     if (!no_spectra) {
       out["spectra"] = json::object();
       for (const auto& s : j.spectra) {
@@ -265,16 +294,27 @@ int run_judge(int argc, char** argv) {
               clip.features.frames, fps, real.size(), kind.empty() ? "" : " of kind ",
               kind.c_str());
   for (const auto& r : real) std::printf("  %s (%g fps)\n", r.dir.c_str(), r.fps);
-  std::printf("\n  feature      real min   real max      value  verdict\n");
-  for (const auto& f : j.features)
-    std::printf("  %-10s %10.4f %10.4f %10.4f  %s\n", f.name.c_str(), f.real_min, f.real_max,
+  const bool sourced = by_source.source >= 0;
+  if (sourced)
+    std::printf("  source: %s (features within %g of its own values count as inside)\n",
+                real[static_cast<size_t>(by_source.source)].dir.c_str(), by_source.tolerance);
+  std::printf("\n  feature      real min   real max %s     value  verdict\n",
+              sourced ? "    source" : "");
+  for (const auto& f : j.features) {
+    char src[32] = "";
+    if (sourced) std::snprintf(src, sizeof src, "%10.4f ", f.source);
+    const bool in_range = f.real_min <= f.value && f.value <= f.real_max;
+    std::printf("  %-10s %10.4f %10.4f %s%10.4f  %s\n", f.name.c_str(), f.real_min, f.real_max, src,
                 f.value,
-                f.inside               ? "inside"
+                f.inside && !in_range  ? "inside (as the source)"
+                : f.inside             ? "inside"
                 : f.value < f.real_min ? "outside (below)"
                 : f.value > f.real_max ? "outside (above)"
                                        : "outside (undefined)");
+  }
   if (!no_spectra) {
-    std::printf("\n  series  real-real lsd (dB)   lsd to each real clip (dB)  verdict");
+    std::printf("\n  series  real-real lsd (dB)   lsd to %-20s verdict",
+                sourced ? "the source (dB)" : "each real clip (dB)");
     if (spectra_margin > 0) std::printf(" (within %.1f dB of the spread)", spectra_margin);
     std::printf("\n");
     for (const auto& s : j.spectra) {

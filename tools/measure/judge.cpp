@@ -21,7 +21,9 @@ Measured measure_clip(const std::string& dir, double fps, const LoadLimits& limi
 }
 
 Judgement judge(const std::vector<Measured>& refs, const Measured& clip,
-                const std::vector<std::string>& names, bool spectra, double spectra_margin_db) {
+                const std::vector<std::string>& names, bool spectra, double spectra_margin_db,
+                const SourceJudging& by_source) {
+  const bool sourced = by_source.source >= 0 && by_source.source < static_cast<int>(refs.size());
   Judgement j;
   for (const std::string& k : names.empty() ? feature_names() : names) {
     FeatureVerdict v{k, INFINITY, -INFINITY, feature(clip.features, k), false};
@@ -31,6 +33,11 @@ Judgement judge(const std::vector<Measured>& refs, const Measured& clip,
       v.real_max = std::max(v.real_max, x);
     }
     v.inside = v.real_min <= v.value && v.value <= v.real_max;  // NaN: outside
+    if (sourced) {
+      v.source = feature(refs[static_cast<size_t>(by_source.source)].features, k);
+      v.inside =
+          v.inside || std::abs(v.value - v.source) <= by_source.tolerance * std::abs(v.source);
+    }
     j.features.push_back(v);
     j.inside += v.inside;
     ++j.of;
@@ -39,7 +46,9 @@ Judgement judge(const std::vector<Measured>& refs, const Measured& clip,
   for (int i = 0; i < 4; ++i) {
     SpectrumVerdict s;
     s.series = kSeriesNames[i];
-    for (const Measured& r : refs) {
+    for (size_t r_at = 0; r_at < refs.size(); ++r_at) {
+      if (sourced && static_cast<int>(r_at) != by_source.source) continue;
+      const Measured& r = refs[r_at];
       const Comparison c = compare(clip.series, clip.fps, r.series, r.fps);
       s.lsd_to_ref.push_back(c.s[i].lsd_db);
       s.std_ratio.push_back(c.s[i].std_ratio);

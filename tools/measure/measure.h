@@ -141,6 +141,7 @@ struct FeatureVerdict {
   std::string name;
   double real_min, real_max, value;
   bool inside;
+  double source = NAN;  // the source clip's value, when judged by source
 };
 struct SpectrumVerdict {
   std::string series;
@@ -158,9 +159,20 @@ struct Judgement {
 // A series is inside when no real clip is further than the real clips are from
 // each other, plus `spectra_margin_db` (0: the real-real spread itself; a
 // margin lets a test hold progress towards the spread).
+//
+// `source` >= 0 judges a clip made from one of the references (a model of
+// that footage, played back): a feature is also inside when it lies within
+// `source_tolerance` (relative) of the source's own value (footage at the edge
+// of the real range stays "as filmed" when its model lands just beyond it),
+// and each series is judged by its distance to the source alone, against the
+// real clips' spread.
+struct SourceJudging {
+  int source = -1;
+  double tolerance = 0.1;
+};
 Judgement judge(const std::vector<Measured>& refs, const Measured& clip,
-                const std::vector<std::string>& names, bool spectra,
-                double spectra_margin_db = 0.0);
+                const std::vector<std::string>& names, bool spectra, double spectra_margin_db = 0.0,
+                const SourceJudging& by_source = {});
 
 // The shared real clips of a kind: "candle" or "fire" (real speed). Empty if
 // the kind is unknown. fps from the clips' table in ../shared/eval/README.md.

@@ -1,5 +1,7 @@
 // candela-tool ingest INPUT... --out DATASET
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/error.h"
@@ -21,12 +23,17 @@ int run_ingest(int argc, char** argv) {
   app.add_option("INPUT", inputs, "PNG folders (or clip folders with frames/) and video files")
       ->required();
   app.add_option("--out", out, "dataset folder to write")->required();
-  app.add_option("--width", opt.width, "output width")
-      ->check(CLI::Range(8, 4096))
-      ->capture_default_str();
-  app.add_option("--height", opt.height, "output height")
-      ->check(CLI::Range(8, 4096))
-      ->capture_default_str();
+  auto* width = app.add_option("--width", opt.width, "output width (--as-filmed: the footage's)")
+                    ->check(CLI::Range(8, 4096))
+                    ->capture_default_str();
+  auto* height =
+      app.add_option("--height", opt.height, "output height (--as-filmed: the footage's)")
+          ->check(CLI::Range(8, 4096))
+          ->capture_default_str();
+  app.add_flag("--as-filmed", opt.as_filmed,
+               "keep each frame whole (scaled to fit, centred; not cropped to the flame), at "
+               "the first input's size (at most 512 rows) unless --width/--height say, with no "
+               "background level taken off unless --threshold says: your footage as it looked");
   app.add_option("--threshold", opt.threshold,
                  "background level, linear 0..1 (default: estimated per clip)");
   app.add_option("--dark", opt.dark_frame, "dark reference frame (PNG) subtracted first")
@@ -47,6 +54,22 @@ int run_ingest(int argc, char** argv) {
   for (const auto& in : inputs) {
     std::fprintf(stderr, "ingest: reading %s\n", in.c_str());
     clips.push_back(candela::tools::read_source(in, max_frames, step, fps));
+  }
+  if (opt.as_filmed && !clips.empty()) {
+    // The footage's own size, unless asked; at most 512 rows (the runtime's
+    // texture budget), the aspect kept.
+    const auto& c0 = clips.front();
+    const double shrink = std::min(1.0, 512.0 / c0.height);
+    if (width->count() == 0 && height->count() == 0) {
+      opt.width = std::max(8, static_cast<int>(std::lround(c0.width * shrink)));
+      opt.height = std::max(8, static_cast<int>(std::lround(c0.height * shrink)));
+    } else if (width->count() == 0) {
+      opt.width =
+          std::max(8, static_cast<int>(std::lround(opt.height * double(c0.width) / c0.height)));
+    } else if (height->count() == 0) {
+      opt.height =
+          std::max(8, static_cast<int>(std::lround(opt.width * double(c0.height) / c0.width)));
+    }
   }
   auto d = candela::tools::ingest(
       clips, opt, [](const std::string& s) { std::fprintf(stderr, "ingest: %s\n", s.c_str()); });

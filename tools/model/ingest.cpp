@@ -285,6 +285,7 @@ Dataset ingest(const std::vector<SourceClip>& clips, const IngestOptions& opt,
               srgb_table()[img.at(x * img.width / w, y * img.height / h)];
     }
     float level = opt.threshold;
+    if (level < 0 && opt.as_filmed) level = 0;
     if (level < 0) {
       // Most of a flame clip is background: twice its median (plus a floor) is above it.
       std::vector<float> sample;
@@ -315,9 +316,14 @@ Dataset ingest(const std::vector<SourceClip>& clips, const IngestOptions& opt,
       }
     const double cx = cx_den > 0 ? cx_num / cx_den : w / 2.0;
     // Output pixels per input pixel: the flame's extent spans top_row..base_row.
-    const double scale = (opt.base_row - opt.top_row) * d.height / std::max(1, base - top + 1);
-    const double ox = cx - (d.width / 2.0) / scale;            // input x of output x = 0
-    const double oy = base - opt.base_row * d.height / scale;  // input y of output y = 0
+    double scale = (opt.base_row - opt.top_row) * d.height / std::max(1, base - top + 1);
+    double ox = cx - (d.width / 2.0) / scale;            // input x of output x = 0
+    double oy = base - opt.base_row * d.height / scale;  // input y of output y = 0
+    if (opt.as_filmed) {                                 // the whole frame, centred
+      scale = std::min(static_cast<double>(d.width) / w, static_cast<double>(d.height) / h);
+      ox = (w - d.width / scale) / 2;
+      oy = (h - d.height / scale) / 2;
+    }
     const int ss = std::clamp(static_cast<int>(std::ceil(1.0 / scale)), 1, 4);  // supersampling
     if (progress)
       progress(c.name + ": " + std::to_string(nf) + " frames " + std::to_string(w) + "x" +
@@ -385,6 +391,7 @@ Dataset ingest(const std::vector<SourceClip>& clips, const IngestOptions& opt,
   d.options = {{"width", opt.width},
                {"height", opt.height},
                {"threshold", opt.threshold},
+               {"as_filmed", opt.as_filmed},
                {"dark_frame", opt.dark_frame},
                {"base_row", opt.base_row},
                {"top_row", opt.top_row},

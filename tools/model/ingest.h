@@ -34,11 +34,16 @@ SourceClip read_source(const std::string& input, int max_frames = 0, int step = 
 struct IngestOptions {
   int width = 128, height = 208;  // common output size
   float threshold = -1;           // background level (linear 0..1); <0: estimate per clip
-  std::string dark_frame;         // optional dark reference PNG, subtracted first
-  float base_row = 0.92f;         // where the flame base lands (fraction of height)
-  float top_row = 0.06f;          // where the typical flame top lands
-  float plume_level = 0.25f;      // plume mask: this fraction of the frame's peak
-  float plume_min_area = 0.03f;   // a plume has at least this share of the mask
+  // As filmed: each clip's whole frame scaled to fit the output (centred, its
+  // aspect kept), not cropped to the flame's base and top; no background level
+  // unless `threshold` is given. For footage to play back as it looked (a
+  // fireplace's dim logs and wall are part of the picture).
+  bool as_filmed = false;
+  std::string dark_frame;        // optional dark reference PNG, subtracted first
+  float base_row = 0.92f;        // where the flame base lands (fraction of height)
+  float top_row = 0.06f;         // where the typical flame top lands
+  float plume_level = 0.25f;     // plume mask: this fraction of the frame's peak
+  float plume_min_area = 0.03f;  // a plume has at least this share of the mask
   struct Label {
     std::string clip;
     int from = 0, to = 0;  // clip-local frames [from, to)
