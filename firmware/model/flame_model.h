@@ -33,9 +33,10 @@ inline constexpr int kMaxArpDim = 64;   // ArpProcess: np + nw + 1 + ne
 inline constexpr int kMaxSuccessors =
     1024;  // GraphWalker: jumps from one frame (sums stay in Q16.16)
 inline constexpr double kMaxClipFps = 1000;  // model frames per second x speed (<= 8) in Q16.16
-// EigenFires a flame is drawn with (GraphPlayer, EigenReconstructor); a model
-// may hold more, and plays its first 512. 512 covers every frame of a clip of
-// 500 frames (20 s at 25 fps), so a user's own footage plays back exactly.
+// EigenFires a flame is drawn with (GraphPlayer, StoryPlayer,
+// EigenReconstructor); a model may hold more, and plays its first 512. 512
+// covers every frame of a clip of 500 frames (20 s at 25 fps), so a user's own
+// footage plays back exactly.
 inline constexpr int kMaxPlayedComponents = 512;
 
 // What is wrong with a Learning Flames part of these sizes for the players:

@@ -10,13 +10,14 @@
 #include <vector>
 
 #include "core/fixed.h"
+#include "model/flame_model.h"
 #include "story/story_plan.h"
 
 namespace candela::story {
 
 class StoryPlayer {
  public:
-  static constexpr int kMaxComponents = 256;
+  static constexpr int kMaxComponents = model::kMaxPlayedComponents;
 
   // components: how many to play (at most the plan's and kMaxComponents).
   StoryPlayer(const StoryPlan& plan, int components, Fixed frames_per_step);
