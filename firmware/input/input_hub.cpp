@@ -14,6 +14,7 @@
 #include "input/camera_source.h"
 #include "input/control_channel.h"
 #include "input/gpio_source.h"
+#include "input/key_input.h"
 
 namespace candela {
 
@@ -39,6 +40,8 @@ InputHub::InputHub(std::vector<InputSpec> inputs, const WindSpec& wind, std::str
       std::make_unique<QueueSink>([this](const InputEvent& e) { return input_queue_.push(e); });
   camera_sink_ =
       std::make_unique<QueueSink>([this](const InputEvent& e) { return camera_queue_.push(e); });
+  key_sink_ =
+      std::make_unique<QueueSink>([this](const InputEvent& e) { return key_queue_.push(e); });
   gpio_of_spec_.assign(specs_.size(), -1);
   for (size_t i = 0; i < specs_.size(); ++i) {
     if (specs_[i].is_gpio()) {
@@ -88,6 +91,16 @@ void InputHub::stop() {
   control_.reset();
 }
 
+void InputHub::on_key(Key key) {
+  const std::optional<WindEvent> wind = key_wind_event(key, wind_spec_);
+  if (!wind) return;
+  InputEvent e;
+  e.wind = *wind;
+  e.cause_ns = monotonic_ns();
+  e.source = kKeySource;
+  key_sink_->emit(e);
+}
+
 void InputHub::drain(WindField& wind) {
   InputEvent e;
   int64_t now = 0;
@@ -102,10 +115,11 @@ void InputHub::drain(WindField& wind) {
     }
     if (ev.source < specs_.size())
       applied_by_source_[ev.source].fetch_add(1, std::memory_order_relaxed);
-    else
+    else if (ev.source == kControlSource)
       applied_control_.fetch_add(1, std::memory_order_relaxed);
     applied_.fetch_add(1, std::memory_order_release);
   };
+  while (key_queue_.pop(e)) apply(e);  // first, as when keys went straight to the wind
   while (input_queue_.pop(e)) apply(e);
   while (camera_queue_.pop(e)) apply(e);
   while (mqtt_queue_.pop(e)) apply(e);

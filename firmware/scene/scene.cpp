@@ -69,8 +69,6 @@ void Scene::draw(FrameContext& frame) {
     for (auto& e : elements_) e->draw(frame, pass);
 }
 
-void Scene::on_key(Key key) { wind_.on_key(key); }
-
 int Scene::candles_lit() const {
   int lit = -1;
   for (const auto& e : elements_)
