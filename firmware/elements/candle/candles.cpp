@@ -461,10 +461,7 @@ std::unique_ptr<ElementSpec> parse_kind(ParamReader& r) { return parse_candles(r
 }  // namespace
 
 uint64_t candle_seed(uint64_t element_seed, size_t index) {
-  uint64_t z = element_seed + 0x9E3779B97F4A7C15ULL * (index + 1);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return (z ^ (z >> 31)) | 1;
+  return split_seed(element_seed, index) | 1;
 }
 
 std::unique_ptr<CandlesSpec> parse_candles(ParamReader& r) {
