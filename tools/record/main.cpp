@@ -2,7 +2,9 @@
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
+#include <optional>
 
+#include "core/wxh.h"
 #include "preview.h"
 #include "recorder.h"
 
@@ -79,22 +81,24 @@ int main(int argc, char** argv) {
     return rc == 0 ? 0 : kExitUsage;
   }
   if (!size.empty()) {
-    char extra = 0;
-    if (std::sscanf(size.c_str(), "%dx%d%c", &o.width, &o.height, &extra) != 2 || o.width < 16 ||
-        o.height < 16 || o.width > 8192 || o.height > 8192) {
+    const std::optional<candela::WxH> s = candela::parse_wxh(size, {16, 16}, {8192, 8192});
+    if (!s) {
       std::fprintf(stderr, "candela-record: --size: expected WxH, e.g. 640x480, got '%s'\n",
                    size.c_str());
       return kExitUsage;
     }
+    o.width = s->width;
+    o.height = s->height;
   }
   if (!preview_size.empty()) {
-    char extra = 0;
-    if (std::sscanf(preview_size.c_str(), "%dx%d%c", &po.width, &po.height, &extra) != 2 ||
-        po.width < 16 || po.height < 16 || po.width > 8192 || po.height > 8192) {
+    const std::optional<candela::WxH> s = candela::parse_wxh(preview_size, {16, 16}, {8192, 8192});
+    if (!s) {
       std::fprintf(stderr, "candela-record: --preview-size: expected WxH, e.g. 320x240, got '%s'\n",
                    preview_size.c_str());
       return kExitUsage;
     }
+    po.width = s->width;
+    po.height = s->height;
   }
   if (o.frames == 0 && o.seconds <= 0)
     std::fprintf(stderr, "candela-record: recording until Ctrl-C (no --frames or --seconds)\n");
