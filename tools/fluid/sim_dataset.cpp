@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace candela::fluid {
@@ -68,16 +68,7 @@ void write_manifest(const std::string& dir, const SimManifest& m) {
       << "t_ambient = " << m.t_ambient << "\n"
       << "t_reference = " << m.t_reference << "\n";
   }
-  const std::string path = manifest_path(dir);
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << o.str();
-    if (!out) throw RuntimeError("cannot write " + tmp);
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw RuntimeError("cannot rename " + tmp + " to " + path + ": " + ec.message());
+  write_atomic(manifest_path(dir), o.str());
 }
 
 SimManifest read_manifest(const std::string& dir) {

@@ -1,13 +1,13 @@
 // candela-tool noise: makes 1/f^beta noise tables for the candle (and any
 // element that wants wind-like fluctuation), and analyses existing ones.
 #include <CLI/CLI.hpp>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 
 #include "candela-tool/subcommand.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "noise/noise_synth.h"
 
@@ -15,24 +15,17 @@ namespace candela::tool {
 namespace {
 
 // Writes only when the bytes differ, so build-time tables keep their
-// timestamps and nothing downstream rebuilds needlessly.
-bool write_if_changed(const std::string& path, const std::string& bytes) {
+// timestamps and nothing downstream rebuilds needlessly. Throws FileError.
+void write_if_changed(const std::string& path, const std::string& bytes) {
   {
     std::ifstream in(path, std::ios::binary);
     if (in) {
       std::stringstream ss;
       ss << in.rdbuf();
-      if (ss.str() == bytes) return true;
+      if (ss.str() == bytes) return;
     }
   }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) return false;
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    if (!out) return false;
-  }
-  return std::rename(tmp.c_str(), path.c_str()) == 0;
+  write_atomic(path, bytes);
 }
 
 int analyze(const std::string& path) {
@@ -88,9 +81,10 @@ int run_noise(int argc, char** argv) {
     return 2;
   }
   const NoiseTable t = noise::make_table(beta, length, seed, gust);
-  if (!write_if_changed(out, NoiseTable::serialize(t.info(), t.samples()))) {
-    std::fprintf(stderr, "candela-tool noise: cannot write %s: %s\n", out.c_str(),
-                 std::strerror(errno));
+  try {
+    write_if_changed(out, NoiseTable::serialize(t.info(), t.samples()));
+  } catch (const FileError& e) {
+    std::fprintf(stderr, "candela-tool noise: %s\n", e.what());
     return 1;
   }
   return 0;
