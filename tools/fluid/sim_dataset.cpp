@@ -20,19 +20,6 @@ std::string numbered(const std::string& dir, const char* sub, const char* stem, 
   return (std::filesystem::path(dir) / sub / name).string();
 }
 
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
-}
-
 }  // namespace
 
 std::string frame_path(const std::string& dir, int index) {
@@ -46,28 +33,21 @@ std::string manifest_path(const std::string& dir) {
 }
 
 void write_manifest(const std::string& dir, const SimManifest& m) {
+  toml::table clip{
+      {"name", m.name},     {"source", m.source}, {"command", m.command},
+      {"frames", m.frames}, {"fps", m.fps},       {"width", m.width},
+      {"height", m.height}, {"colour", m.colour}, {"frame_pattern", "frames/frame_%06d.png"}};
+  toml::table manifest{{"clip", std::move(clip)}};
+  if (m.has_fields)
+    manifest.insert("fields", toml::table{{"pattern", "fields/field_%06d.cfld"},
+                                          {"format", "CFLD 1"},
+                                          {"width", m.grid_width},
+                                          {"height", m.grid_height},
+                                          {"t_ambient", m.t_ambient},
+                                          {"t_reference", m.t_reference}});
   std::ostringstream o;
-  o.precision(17);
   o << "# Candela flame clip: PNG frames (+ optional simulation fields).\n"
-    << "[clip]\n"
-    << "name = " << quoted(m.name) << "\n"
-    << "source = " << quoted(m.source) << "\n"
-    << "command = " << quoted(m.command) << "\n"
-    << "frames = " << m.frames << "\n"
-    << "fps = " << m.fps << "\n"
-    << "width = " << m.width << "\n"
-    << "height = " << m.height << "\n"
-    << "colour = " << quoted(m.colour) << "\n"
-    << "frame_pattern = \"frames/frame_%06d.png\"\n";
-  if (m.has_fields) {
-    o << "\n[fields]\n"
-      << "pattern = \"fields/field_%06d.cfld\"\n"
-      << "format = \"CFLD 1\"\n"
-      << "width = " << m.grid_width << "\n"
-      << "height = " << m.grid_height << "\n"
-      << "t_ambient = " << m.t_ambient << "\n"
-      << "t_reference = " << m.t_reference << "\n";
-  }
+    << toml::toml_formatter(manifest) << "\n";
   write_atomic(manifest_path(dir), o.str());
 }
 
