@@ -143,19 +143,23 @@ Json ms(int64_t ns) {
   if (ns < 0) return nullptr;
   return json_decimals(static_cast<double>(ns) / 1e6, 3);
 }
-Json wind_json(int32_t x_raw, int32_t z_raw) {
-  return {{"x", json_decimals(Fixed::from_raw(x_raw).to_double(), 4)},
-          {"z", json_decimals(Fixed::from_raw(z_raw).to_double(), 4)}};
+// What `state` and the MQTT summary begin with: frame, step and the wind at
+// the origin (x, z to four places).
+Json frame_step_wind(uint64_t frame, uint64_t step, int32_t x_raw, int32_t z_raw) {
+  Json j;
+  j["frame"] = frame;
+  j["step"] = step;
+  j["wind"] = {{"x", json_decimals(Fixed::from_raw(x_raw).to_double(), 4)},
+               {"z", json_decimals(Fixed::from_raw(z_raw).to_double(), 4)}};
+  return j;
 }
 Json lit_json(int n) { return n >= 0 ? Json(n) : Json(nullptr); }
 }  // namespace
 
 std::string InputHub::state_json() const {
-  Json j;
-  j["frame"] = frame_.load(std::memory_order_acquire);
-  j["step"] = step_.load(std::memory_order_relaxed);
-  j["wind"] =
-      wind_json(wind_x_.load(std::memory_order_relaxed), wind_z_.load(std::memory_order_relaxed));
+  Json j = frame_step_wind(
+      frame_.load(std::memory_order_acquire), step_.load(std::memory_order_relaxed),
+      wind_x_.load(std::memory_order_relaxed), wind_z_.load(std::memory_order_relaxed));
   j["events"] = applied_.load(std::memory_order_acquire);
   j["control_events"] = applied_control_.load(std::memory_order_relaxed);
   j["dropped"] = input_queue_.dropped() + camera_queue_.dropped() + mqtt_queue_.dropped() +
@@ -198,11 +202,9 @@ std::string InputHub::state_json() const {
 }
 
 std::string InputHub::summary_json() const {
-  Json j;
-  j["frame"] = frame_.load(std::memory_order_acquire);
-  j["step"] = step_.load(std::memory_order_relaxed);
-  j["wind"] =
-      wind_json(wind_x_.load(std::memory_order_relaxed), wind_z_.load(std::memory_order_relaxed));
+  Json j = frame_step_wind(
+      frame_.load(std::memory_order_acquire), step_.load(std::memory_order_relaxed),
+      wind_x_.load(std::memory_order_relaxed), wind_z_.load(std::memory_order_relaxed));
   j["volume"] = json_decimals(static_cast<double>(volume()), 3);
   j["candles_lit"] = lit_json(candles_lit_.load(std::memory_order_relaxed));
   j["events"] = applied_.load(std::memory_order_acquire);

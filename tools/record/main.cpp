@@ -80,26 +80,23 @@ int main(int argc, char** argv) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : kExitUsage;
   }
-  if (!size.empty()) {
-    const std::optional<candela::WxH> s = candela::parse_wxh(size, {16, 16}, {8192, 8192});
+  // --size and --preview-size: WxH, each side 16 to 8192.
+  const auto parse_size = [](const std::string& text, const char* option, const char* example,
+                             int& w, int& h) {
+    const std::optional<candela::WxH> s = candela::parse_wxh(text, {16, 16}, {8192, 8192});
     if (!s) {
-      std::fprintf(stderr, "candela-record: --size: expected WxH, e.g. 640x480, got '%s'\n",
-                   size.c_str());
-      return kExitUsage;
+      std::fprintf(stderr, "candela-record: %s: expected WxH, e.g. %s, got '%s'\n", option, example,
+                   text.c_str());
+      return false;
     }
-    o.width = s->width;
-    o.height = s->height;
-  }
-  if (!preview_size.empty()) {
-    const std::optional<candela::WxH> s = candela::parse_wxh(preview_size, {16, 16}, {8192, 8192});
-    if (!s) {
-      std::fprintf(stderr, "candela-record: --preview-size: expected WxH, e.g. 320x240, got '%s'\n",
-                   preview_size.c_str());
-      return kExitUsage;
-    }
-    po.width = s->width;
-    po.height = s->height;
-  }
+    w = s->width;
+    h = s->height;
+    return true;
+  };
+  if (!size.empty() && !parse_size(size, "--size", "640x480", o.width, o.height)) return kExitUsage;
+  if (!preview_size.empty() &&
+      !parse_size(preview_size, "--preview-size", "320x240", po.width, po.height))
+    return kExitUsage;
   if (o.frames == 0 && o.seconds <= 0)
     std::fprintf(stderr, "candela-record: recording until Ctrl-C (no --frames or --seconds)\n");
   std::signal(SIGINT, on_signal);
