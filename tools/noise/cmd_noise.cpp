@@ -9,7 +9,7 @@ int run_noise(int argc, char** argv) {
   return noise::run_noise_command(argc, argv, "candela-tool noise");
 }
 
-const Registration reg{"noise", "make or analyse 1/f^beta noise tables", run_noise};
-
 }  // namespace
 }  // namespace candela::tool
+
+int candela::tool::cmd_noise(int argc, char** argv) { return run_noise(argc, argv); }
