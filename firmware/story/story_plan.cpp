@@ -63,9 +63,8 @@ std::vector<int> clip_frames(const StoryDesc& s, const SegmentSpec& g, const mod
 std::vector<int> walk_frames(const SegmentSpec& g, int n, const model::FlameModel& m,
                              uint64_t seed) {
   (void)g;
-  GraphView view{m.graph.offsets, m.graph.successors, m.graph.cost};
   // No wind steers a planned walk: every frame leans alike.
-  GraphWalker walker(view, m.weights, m.components(),
+  GraphWalker walker(m.graph, m.weights, m.components(),
                      std::vector<Fixed>(static_cast<size_t>(m.frames())), WalkSettings{}, seed);
   std::vector<int> out{walker.current()};
   while (static_cast<int>(out.size()) < n) out.push_back(walker.step(Fixed{}));

@@ -151,8 +151,7 @@ class EigenFlame final : public Element {
       if (s.driver == EigenDriver::kArp)
         LOG_WARN("eigenflame: %s has no Learning Flames part; playing its motion graph instead",
                  model_->source.c_str());
-      GraphView g{m.graph.offsets, m.graph.successors, m.graph.cost};
-      GraphWalker walker(g, m.weights, m.components(), model_->lean, s.walk, seed);
+      GraphWalker walker(m.graph, m.weights, m.components(), model_->lean, s.walk, seed);
       player_ = std::make_unique<GraphPlayer>(std::move(walker), m.weights, m.components(),
                                               Fixed::from_ratio(1, 2));
       renderer_ = std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen),
