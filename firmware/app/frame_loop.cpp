@@ -10,6 +10,20 @@
 #include "sound/sound_output.h"
 
 namespace candela {
+namespace {
+// What the display delivers: keys go to the inputs, which make them wind
+// events like every other input (no InputHub: nowhere).
+class KeysToInputs final : public DisplayEvents {
+ public:
+  explicit KeysToInputs(InputHub* inputs) : inputs_(inputs) {}
+  void on_key(Key key) override {
+    if (inputs_) inputs_->on_key(key);
+  }
+
+ private:
+  InputHub* inputs_;
+};
+}  // namespace
 
 LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s) {
   using Clock = std::chrono::steady_clock;
@@ -23,6 +37,7 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
   StepContext step;
   step.dt = clock.step_seconds();
   FrameContext frame;
+  KeysToInputs keys(s.inputs);
 
   auto do_step = [&] {
     step.step = clock.steps();
@@ -41,7 +56,7 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
   auto prev_begin = last_present;
   while (s.max_frames == 0 || result.frames < s.max_frames) {
     if (s.stop && s.stop->load(std::memory_order_relaxed)) break;
-    if (!display.poll_events(scene)) {
+    if (!display.poll_events(keys)) {
       result.quit_requested = true;
       break;
     }

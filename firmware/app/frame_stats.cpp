@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <ctime>
+#include <nlohmann/json.hpp>
+
+#include "core/json.h"
 
 namespace candela {
 
@@ -26,31 +28,27 @@ std::string FrameStats::json(uint64_t frames, double cpu_seconds, int64_t missed
   const size_t skip = intervals_ms_.size() > 20 ? 5 : 0;
   std::vector<double> iv(intervals_ms_.begin() + skip, intervals_ms_.end());
   std::vector<double> wk(work_ms_.begin() + skip, work_ms_.end());
-  char buf[1024];
-  char missed_s[32];
-  if (missed < 0)
-    std::snprintf(missed_s, sizeof missed_s, "null");
-  else
-    std::snprintf(missed_s, sizeof missed_s, "%lld", static_cast<long long>(missed));
   double mean = 0;
   for (double x : iv) mean += x;
   mean = iv.empty() ? 0 : mean / iv.size();
-  std::string esc;
-  for (char c : scene) {
-    if (c == '"' || c == '\\') esc += '\\';
-    esc += c;
-  }
-  std::snprintf(
-      buf, sizeof buf,
-      "{\"bench\":\"candela\",\"scene\":\"%s\",\"display\":\"%s\",\"width\":%d,\"height\":%d,"
-      "\"frames\":%llu,\"frame_ms_p50\":%.3f,\"frame_ms_p95\":%.3f,\"frame_ms_p99\":%.3f,"
-      "\"frame_ms_mean\":%.3f,\"fps\":%.1f,\"work_ms_p50\":%.3f,\"cpu_ms_per_frame\":%.3f,"
-      "\"missed_vblanks\":%s,\"peak_rss_mb\":%.1f}",
-      esc.c_str(), display.c_str(), width, height, static_cast<unsigned long long>(frames),
-      percentile(iv, 50), percentile(iv, 95), percentile(iv, 99), mean,
-      mean > 0 ? 1000.0 / mean : 0.0, percentile(wk, 50),
-      frames ? cpu_seconds * 1000.0 / frames : 0.0, missed_s, peak_rss_mb());
-  return buf;
+  nlohmann::ordered_json j;
+  j["bench"] = "candela";
+  j["scene"] = scene;
+  j["display"] = display;
+  j["width"] = width;
+  j["height"] = height;
+  j["frames"] = frames;
+  j["frame_ms_p50"] = json_decimals(percentile(iv, 50), 3);
+  j["frame_ms_p95"] = json_decimals(percentile(iv, 95), 3);
+  j["frame_ms_p99"] = json_decimals(percentile(iv, 99), 3);
+  j["frame_ms_mean"] = json_decimals(mean, 3);
+  j["fps"] = json_decimals(mean > 0 ? 1000.0 / mean : 0.0, 1);
+  j["work_ms_p50"] = json_decimals(percentile(wk, 50), 3);
+  j["cpu_ms_per_frame"] = json_decimals(frames ? cpu_seconds * 1000.0 / frames : 0.0, 3);
+  j["missed_vblanks"] =
+      missed < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(missed);
+  j["peak_rss_mb"] = json_decimals(peak_rss_mb(), 1);
+  return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 
 double process_cpu_seconds() {

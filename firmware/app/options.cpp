@@ -3,10 +3,12 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "app/config_file.h"
 #include "core/error.h"
+#include "core/wxh.h"
 #include "input/gpio_line.h"
 
 namespace candela {
@@ -102,13 +104,10 @@ int parse_options(int argc, char** argv, Options& o) {
     o.mqtt = std::move(c.mqtt);
   }
   if (!size.empty()) {
-    const auto x = size.find('x');
-    uint64_t w = 0, h = 0;
-    if (x == std::string::npos || !parse_count(size.substr(0, x), 16384, &w) ||
-        !parse_count(size.substr(x + 1), 16384, &h) || w < 16 || h < 16)
-      return usage_error("--size", "WxH, each 16 to 16384, e.g. 1280x720", size);
-    o.display.width = static_cast<int>(w);
-    o.display.height = static_cast<int>(h);
+    const std::optional<WxH> s = parse_wxh(size, {16, 16}, {16384, 16384});
+    if (!s) return usage_error("--size", "WxH, each 16 to 16384, e.g. 1280x720", size);
+    o.display.width = s->width;
+    o.display.height = s->height;
   }
   // Up to 2^53 frames: centuries at 60 Hz, and exact as a double in statistics.
   if (!frames.empty() && !parse_count(frames, uint64_t{1} << 53, &o.frames))

@@ -3,24 +3,17 @@
 #include <png.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <memory>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/file_read.h"
 
 namespace candela {
 namespace {
-
-struct FileCloser {
-  void operator()(FILE* f) const {
-    if (f) std::fclose(f);
-  }
-};
 
 [[noreturn]] void png_error_fn(png_structp png, png_const_charp msg) {
   auto* what = static_cast<std::string*>(png_get_error_ptr(png));
@@ -156,10 +149,7 @@ Image read_png(const std::string& path, int want_channels) {
 
 void write_png(const std::string& path, int width, int height, int channels, const uint8_t* data,
                int stride) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::unique_ptr<FILE, FileCloser> f(std::fopen(tmp.c_str(), "wb"));
-    if (!f) throw RuntimeError(path + ": cannot write: " + std::strerror(errno));
+  write_atomic(path, [&](FILE* f) {
     std::string what;
     png_structp png =
         png_create_write_struct(PNG_LIBPNG_VER_STRING, &what, png_error_fn, png_warning_fn);
@@ -170,10 +160,9 @@ void write_png(const std::string& path, int width, int height, int channels, con
     }
     if (setjmp(png_jmpbuf(png))) {
       png_destroy_write_struct(&png, &info);
-      std::remove(tmp.c_str());
       throw RuntimeError(path + ": " + what);
     }
-    png_init_io(png, f.get());
+    png_init_io(png, f);
     static const int kTypes[] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
                                  PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGBA};
     png_set_IHDR(png, info, width, height, 8, kTypes[channels], PNG_INTERLACE_NONE,
@@ -185,15 +174,7 @@ void write_png(const std::string& path, int width, int height, int channels, con
     for (int y = 0; y < height; ++y) png_write_row(png, data + step * y);
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
-    if (std::fflush(f.get()) != 0) {
-      std::remove(tmp.c_str());
-      throw RuntimeError(path + ": write failed: " + std::strerror(errno));
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw RuntimeError(path + ": cannot rename into place: " + std::strerror(errno));
-  }
+  });
 }
 
 void write_png(const std::string& path, const Image& image) {

@@ -9,6 +9,21 @@
 
 namespace candela {
 
+// SplitMix64 (Steele, Lea and Flood 2014). The golden-ratio increment of
+// its state, and its finaliser: a well-spread 64-bit hash of z.
+inline constexpr uint64_t kSplitMix64Gamma = 0x9E3779B97F4A7C15ULL;
+constexpr uint64_t splitmix64_mix(uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+// One seed spread into independent seeds, one per index (the SplitMix64
+// sequence from `seed`, its index+1'th output): a scene's elements, a story's
+// segments, a synthesiser's parts, a group's candles.
+constexpr uint64_t split_seed(uint64_t seed, uint64_t index) {
+  return splitmix64_mix(seed + kSplitMix64Gamma * (index + 1));
+}
+
 class Pcg32 {
  public:
   explicit Pcg32(uint64_t seed, uint64_t stream = 54) {

@@ -55,4 +55,41 @@ void Billboards::draw(const Mat4& view_projection, const Vec3& right, const Vec3
   glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, instances_.count());
 }
 
+InstancedMesh::InstancedMesh(std::span<const float> vertices, std::initializer_list<int> layout,
+                             std::span<const unsigned short> indices, int instance_vec4s,
+                             size_t max_instances)
+    : vao_(make_vertex_array()),
+      vertices_(make_buffer()),
+      indices_(make_buffer()),
+      index_count_(static_cast<GLsizei>(indices.size())) {
+  glBindVertexArray(vao_.get());
+  glBindBuffer(GL_ARRAY_BUFFER, vertices_.get());
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size_bytes()), vertices.data(),
+               GL_STATIC_DRAW);
+  int stride = 0;
+  for (int n : layout) stride += n;
+  GLuint location = 0;
+  int offset = 0;
+  for (int n : layout) {
+    glEnableVertexAttribArray(location);
+    glVertexAttribPointer(
+        location, n, GL_FLOAT, GL_FALSE, stride * static_cast<GLsizei>(sizeof(float)),
+        reinterpret_cast<const void*>(static_cast<uintptr_t>(offset) * sizeof(float)));
+    ++location;
+    offset += n;
+  }
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.get());
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size_bytes()),
+               indices.data(), GL_STATIC_DRAW);
+  instances_ = InstanceBuffer(instance_vec4s, max_instances);
+  instances_.bind_attributes(location);
+  glBindVertexArray(0);
+}
+
+void InstancedMesh::draw() const {
+  glBindVertexArray(vao_.get());
+  glDrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_SHORT, nullptr,
+                          instances_.count());
+}
+
 }  // namespace candela

@@ -1,9 +1,12 @@
 // Instanced drawing: per-instance records staged on the CPU into storage
 // allocated once, uploaded in one call, read by vertex attributes with a
-// divisor of 1; and Billboards, camera-facing quads drawn that way.
+// divisor of 1; Billboards, camera-facing quads drawn that way; and
+// InstancedMesh, a static indexed mesh drawn that way.
 #pragma once
 
 #include <cstddef>
+#include <initializer_list>
+#include <span>
 #include <vector>
 
 #include "gl/math.h"
@@ -59,6 +62,27 @@ class Billboards {
   Program prog_;
   GLint vp_ = -1, right_ = -1, up_ = -1;
   VertexArray vao_;
+  InstanceBuffer instances_;
+};
+
+// A static indexed mesh, uploaded once, drawn once per instance record:
+// per vertex the attributes `layout` says (floats each, interleaved,
+// locations 0...), then the instance's vec4s at the locations after them.
+// Draw with the caller's program and state.
+class InstancedMesh {
+ public:
+  InstancedMesh() = default;
+  InstancedMesh(std::span<const float> vertices, std::initializer_list<int> layout,
+                std::span<const unsigned short> indices, int instance_vec4s, size_t max_instances);
+  InstanceBuffer& instances() { return instances_; }
+  int count() const { return instances_.count(); }
+  // Draws the uploaded instances as indexed triangles.
+  void draw() const;
+
+ private:
+  VertexArray vao_;
+  Buffer vertices_, indices_;
+  GLsizei index_count_ = 0;
   InstanceBuffer instances_;
 };
 

@@ -59,13 +59,8 @@ std::string CameraSource::device() const {
   return device_;
 }
 
-std::string CameraSource::stats_json() const {
-  char buf[160];
-  std::snprintf(buf, sizeof buf,
-                ",\"frames\":%llu,\"gusts\":%llu,\"fps\":%.2f,\"cpu_percent\":%.3f",
-                static_cast<unsigned long long>(frames_.load()),
-                static_cast<unsigned long long>(gusts_.load()), fps_.load(), cpu_percent_.load());
-  return buf;
+CameraSource::Stats CameraSource::stats() const {
+  return {frames_.load(), gusts_.load(), fps_.load(), cpu_percent_.load()};
 }
 
 void CameraSource::set_status(const std::string& status, bool warn) {

@@ -25,8 +25,12 @@ class CameraSource {
   uint16_t source() const { return source_; }
   std::string status() const;
   std::string device() const;
-  // ,"frames":N,"gusts":G,"fps":F,"cpu_percent":C  (appended to the input's JSON)
-  std::string stats_json() const;
+  // What `state` reports of the camera besides its status.
+  struct Stats {
+    uint64_t frames = 0, gusts = 0;
+    double fps = 0, cpu_percent = 0;
+  };
+  Stats stats() const;
 
   static constexpr int kRetryMs = 2000;
 

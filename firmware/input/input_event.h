@@ -11,9 +11,10 @@ namespace candela {
 struct InputEvent {
   WindEvent wind;
   int64_t cause_ns = 0;
-  uint16_t source = 0;  // index of the InputSpec; kControlSource for the control socket
+  uint16_t source = 0;  // index of the InputSpec; kControlSource or kKeySource
 };
-inline constexpr uint16_t kControlSource = 0xFFFF;
+inline constexpr uint16_t kControlSource = 0xFFFF;  // the control socket and MQTT
+inline constexpr uint16_t kKeySource = 0xFFFE;      // the display's keys (InputHub::on_key)
 
 // Where sensor logic puts its events (the hub's queue, or a test's vector).
 class InputEventSink {

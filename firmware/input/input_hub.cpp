@@ -8,12 +8,15 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <nlohmann/json.hpp>
+#include <optional>
 
 #include "core/json.h"
 #include "core/log.h"
 #include "input/camera_source.h"
 #include "input/control_channel.h"
 #include "input/gpio_source.h"
+#include "input/key_input.h"
 
 namespace candela {
 
@@ -39,6 +42,8 @@ InputHub::InputHub(std::vector<InputSpec> inputs, const WindSpec& wind, std::str
       std::make_unique<QueueSink>([this](const InputEvent& e) { return input_queue_.push(e); });
   camera_sink_ =
       std::make_unique<QueueSink>([this](const InputEvent& e) { return camera_queue_.push(e); });
+  key_sink_ =
+      std::make_unique<QueueSink>([this](const InputEvent& e) { return key_queue_.push(e); });
   gpio_of_spec_.assign(specs_.size(), -1);
   for (size_t i = 0; i < specs_.size(); ++i) {
     if (specs_[i].is_gpio()) {
@@ -88,6 +93,16 @@ void InputHub::stop() {
   control_.reset();
 }
 
+void InputHub::on_key(Key key) {
+  const std::optional<WindEvent> wind = key_wind_event(key, wind_spec_);
+  if (!wind) return;
+  InputEvent e;
+  e.wind = *wind;
+  e.cause_ns = monotonic_ns();
+  e.source = kKeySource;
+  key_sink_->emit(e);
+}
+
 void InputHub::drain(WindField& wind) {
   InputEvent e;
   int64_t now = 0;
@@ -102,10 +117,11 @@ void InputHub::drain(WindField& wind) {
     }
     if (ev.source < specs_.size())
       applied_by_source_[ev.source].fetch_add(1, std::memory_order_relaxed);
-    else
+    else if (ev.source == kControlSource)
       applied_control_.fetch_add(1, std::memory_order_relaxed);
     applied_.fetch_add(1, std::memory_order_release);
   };
+  while (key_queue_.pop(e)) apply(e);  // first, as when keys went straight to the wind
   while (input_queue_.pop(e)) apply(e);
   while (camera_queue_.pop(e)) apply(e);
   while (mqtt_queue_.pop(e)) apply(e);
@@ -120,83 +136,79 @@ void InputHub::publish(uint64_t step, uint64_t frame, WindSample wind, int candl
 }
 
 namespace {
-std::string ms(int64_t ns) {
-  if (ns < 0) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f", static_cast<double>(ns) / 1e6);
-  return buf;
+using Json = nlohmann::ordered_json;
+
+// A latency in ms to three places; null when none was measured.
+Json ms(int64_t ns) {
+  if (ns < 0) return nullptr;
+  return json_decimals(static_cast<double>(ns) / 1e6, 3);
 }
+// What `state` and the MQTT summary begin with: frame, step and the wind at
+// the origin (x, z to four places).
+Json frame_step_wind(uint64_t frame, uint64_t step, int32_t x_raw, int32_t z_raw) {
+  Json j;
+  j["frame"] = frame;
+  j["step"] = step;
+  j["wind"] = {{"x", json_decimals(Fixed::from_raw(x_raw).to_double(), 4)},
+               {"z", json_decimals(Fixed::from_raw(z_raw).to_double(), 4)}};
+  return j;
+}
+Json lit_json(int n) { return n >= 0 ? Json(n) : Json(nullptr); }
 }  // namespace
 
 std::string InputHub::state_json() const {
-  char head[512];
-  const uint64_t frame = frame_.load(std::memory_order_acquire);
-  char lit[16] = "null";
-  if (const int n = candles_lit_.load(std::memory_order_relaxed); n >= 0)
-    std::snprintf(lit, sizeof lit, "%d", n);
-  std::snprintf(head, sizeof head,
-                "{\"frame\":%llu,\"step\":%llu,\"wind\":{\"x\":%.4f,\"z\":%.4f},\"events\":%llu,"
-                "\"control_events\":%llu,\"dropped\":%llu,\"latency_ms\":{\"last\":%s,\"max\":%s},"
-                "\"candles_lit\":%s,\"volume\":%.3f,\"inputs\":[",
-                static_cast<unsigned long long>(frame),
-                static_cast<unsigned long long>(step_.load(std::memory_order_relaxed)),
-                Fixed::from_raw(wind_x_.load(std::memory_order_relaxed)).to_double(),
-                Fixed::from_raw(wind_z_.load(std::memory_order_relaxed)).to_double(),
-                static_cast<unsigned long long>(applied_.load(std::memory_order_acquire)),
-                static_cast<unsigned long long>(applied_control_.load(std::memory_order_relaxed)),
-                static_cast<unsigned long long>(input_queue_.dropped() + camera_queue_.dropped() +
-                                                mqtt_queue_.dropped()),
-                ms(last_latency_ns_.load(std::memory_order_relaxed)).c_str(),
-                ms(max_latency_ns_.load(std::memory_order_relaxed)).c_str(), lit,
-                static_cast<double>(volume()));
-  std::string out = head;
-  bool first = true;
+  Json j = frame_step_wind(
+      frame_.load(std::memory_order_acquire), step_.load(std::memory_order_relaxed),
+      wind_x_.load(std::memory_order_relaxed), wind_z_.load(std::memory_order_relaxed));
+  j["events"] = applied_.load(std::memory_order_acquire);
+  j["control_events"] = applied_control_.load(std::memory_order_relaxed);
+  j["dropped"] = input_queue_.dropped() + camera_queue_.dropped() + mqtt_queue_.dropped() +
+                 key_queue_.dropped();
+  j["latency_ms"] = {{"last", ms(last_latency_ns_.load(std::memory_order_relaxed))},
+                     {"max", ms(max_latency_ns_.load(std::memory_order_relaxed))}};
+  j["candles_lit"] = lit_json(candles_lit_.load(std::memory_order_relaxed));
+  j["volume"] = json_decimals(static_cast<double>(volume()), 3);
+  Json inputs = Json::array();
   for (size_t i = 0; i < specs_.size(); ++i) {
     const InputSpec& s = specs_[i];
-    std::string status, line, extra;
+    Json in;
+    in["name"] = s.name;
+    in["kind"] = input_kind_name(s.kind);
+    Json extra = Json::object();
     if (gpio_of_spec_[i] >= 0) {
       const GpioSource& g = *gpio_[static_cast<size_t>(gpio_of_spec_[i])];
-      status = g.status();
-      line = g.line_description();
-      char buf[96];
-      std::snprintf(buf, sizeof buf, ",\"activations\":%llu,\"speed\":%.4f",
-                    static_cast<unsigned long long>(g.logic().activations()), g.logic().speed());
-      extra = buf;
+      in["status"] = g.status();
+      in["device"] = g.line_description();
+      extra["activations"] = g.logic().activations();
+      extra["speed"] = json_decimals(g.logic().speed(), 4);
     } else if (camera_ && camera_->source() == i) {
-      status = camera_->status();
-      line = camera_->device();
-      extra = camera_->stats_json();
+      in["status"] = camera_->status();
+      in["device"] = camera_->device();
+      const CameraSource::Stats c = camera_->stats();
+      extra["frames"] = c.frames;
+      extra["gusts"] = c.gusts;
+      extra["fps"] = json_decimals(c.fps, 2);
+      extra["cpu_percent"] = json_decimals(c.cpu_percent, 3);
     } else {
-      status = "ignored";
+      in["status"] = "ignored";
+      in["device"] = "";
     }
-    char buf[64];
-    std::snprintf(
-        buf, sizeof buf, ",\"events\":%llu",
-        static_cast<unsigned long long>(applied_by_source_[i].load(std::memory_order_relaxed)));
-    out += std::string(first ? "" : ",") + "{\"name\":" + json_quote(s.name) + ",\"kind\":\"" +
-           input_kind_name(s.kind) + "\",\"status\":" + json_quote(status) +
-           ",\"device\":" + json_quote(line) + buf + extra + "}";
-    first = false;
+    in["events"] = applied_by_source_[i].load(std::memory_order_relaxed);
+    in.update(extra);
+    inputs.push_back(std::move(in));
   }
-  out += "]}";
-  return out;
+  j["inputs"] = std::move(inputs);
+  return j.dump(-1, ' ', false, Json::error_handler_t::replace);
 }
 
 std::string InputHub::summary_json() const {
-  char buf[384];
-  char lit[16] = "null";
-  if (const int n = candles_lit_.load(std::memory_order_relaxed); n >= 0)
-    std::snprintf(lit, sizeof lit, "%d", n);
-  std::snprintf(buf, sizeof buf,
-                "{\"frame\":%llu,\"step\":%llu,\"wind\":{\"x\":%.4f,\"z\":%.4f},"
-                "\"volume\":%.3f,\"candles_lit\":%s,\"events\":%llu}",
-                static_cast<unsigned long long>(frame_.load(std::memory_order_acquire)),
-                static_cast<unsigned long long>(step_.load(std::memory_order_relaxed)),
-                Fixed::from_raw(wind_x_.load(std::memory_order_relaxed)).to_double(),
-                Fixed::from_raw(wind_z_.load(std::memory_order_relaxed)).to_double(),
-                static_cast<double>(volume()), lit,
-                static_cast<unsigned long long>(applied_.load(std::memory_order_acquire)));
-  return buf;
+  Json j = frame_step_wind(
+      frame_.load(std::memory_order_acquire), step_.load(std::memory_order_relaxed),
+      wind_x_.load(std::memory_order_relaxed), wind_z_.load(std::memory_order_relaxed));
+  j["volume"] = json_decimals(static_cast<double>(volume()), 3);
+  j["candles_lit"] = lit_json(candles_lit_.load(std::memory_order_relaxed));
+  j["events"] = applied_.load(std::memory_order_acquire);
+  return j.dump();
 }
 
 std::string InputHub::answer(std::string_view line, Origin origin) {

@@ -1,6 +1,7 @@
 // The runtime's inputs: GPIO sensors and the control socket on one input
-// thread (asleep in poll()), the camera on its own thread, each handing wind
-// events to the frame loop through a lock-free SPSC queue. The frame loop
+// thread (asleep in poll()), the camera on its own thread, the display's keys
+// on the frame loop's, each handing wind events to the frame loop through a
+// lock-free SPSC queue. The frame loop
 // calls drain() once per frame (applies the events to the wind field) and
 // publish() once per frame (what `state` reports). Nothing here ever blocks
 // or allocates on the frame loop's side.
@@ -12,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "display/display.h"
 #include "input/input_event.h"
 #include "input/input_spec.h"
 #include "input/spsc_queue.h"
@@ -37,6 +39,9 @@ class InputHub {
   void stop();
   bool control_ready() const { return control_ != nullptr; }
 
+  // Frame loop: a key the display delivered (input/key_input.h says which
+  // wind each stands for), applied by the next drain().
+  void on_key(Key key);
   // Frame loop, once per frame before the steps: applies queued events.
   void drain(WindField& wind);
   // Frame loop, once per frame after the steps: what `state` reports.
@@ -77,8 +82,10 @@ class InputHub {
   SpscQueue<InputEvent, 256> input_queue_;  // producer: the input thread
   SpscQueue<InputEvent, 64> camera_queue_;  // producer: the camera thread
   SpscQueue<InputEvent, 64> mqtt_queue_;    // producer: the MQTT client thread
+  SpscQueue<InputEvent, 64> key_queue_;     // producer: the frame loop (keys)
   std::unique_ptr<QueueSink> input_sink_;
   std::unique_ptr<QueueSink> camera_sink_;
+  std::unique_ptr<QueueSink> key_sink_;
   int stop_fd_ = -1;
   std::thread thread_;
 

@@ -19,6 +19,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "core/error.h"
@@ -59,29 +60,33 @@ std::shared_ptr<lc::CameraManager> shared_manager() {
 
 // Scalars as JSON numbers/booleans; arrays and the rest as JSON strings.
 std::string control_json(const lc::ControlValue& v) {
-  if (v.isNone()) return "null";
-  if (!v.isArray()) {
+  nlohmann::json j;  // null
+  if (v.isNone()) return j.dump();
+  if (v.isArray()) {
+    j = v.toString();
+  } else {
     switch (v.type()) {
       case lc::ControlTypeBool:
-        return v.get<bool>() ? "true" : "false";
+        j = v.get<bool>();
+        break;
       case lc::ControlTypeByte:
-        return std::to_string(v.get<uint8_t>());
+        j = v.get<uint8_t>();
+        break;
       case lc::ControlTypeInteger32:
-        return std::to_string(v.get<int32_t>());
+        j = v.get<int32_t>();
+        break;
       case lc::ControlTypeInteger64:
-        return std::to_string(v.get<int64_t>());
-      case lc::ControlTypeFloat: {
-        const float f = v.get<float>();
-        if (!std::isfinite(f)) return "null";
-        char b[32];
-        std::snprintf(b, sizeof b, "%g", static_cast<double>(f));
-        return b;
-      }
+        j = v.get<int64_t>();
+        break;
+      case lc::ControlTypeFloat:  // six significant digits (%g); NaN and infinities: null
+        j = json_digits(static_cast<double>(v.get<float>()), 6);
+        break;
       default:
+        j = v.toString();
         break;
     }
   }
-  return json_quote(v.toString());
+  return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 class LibcameraCapture final : public VideoCapture {

@@ -8,10 +8,10 @@
 #include <chrono>
 #include <cstring>
 #include <mutex>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "core/file_read.h"
-#include "core/json.h"
 #include "core/log.h"
 #include "input/control_channel.h"
 #include "input/input_event.h"
@@ -195,26 +195,39 @@ void MqttBridge::publish_state(bool force) {
 }
 
 std::string MqttBridge::discovery_json(bool gust) const {
+  using Json = nlohmann::ordered_json;
   const std::string node = mqtt_node_id(s_.prefix);
   const std::string& p = s_.prefix;
-  const std::string common =
-      ",\"availability_topic\":" + json_quote(p + "/availability") +
-      ",\"payload_available\":\"online\",\"payload_not_available\":\"offline\","
-      "\"device\":{\"identifiers\":[" +
-      json_quote("candela_" + node) + "],\"name\":" + json_quote("Candela " + p) +
-      ",\"manufacturer\":\"Candela\",\"model\":\"candela\",\"sw_version\":\"0.1.0\"}}";
-  if (gust)  // a button: a gust from the front at the scene's [wind] gust_speed
-    return "{\"name\":\"Gust\",\"unique_id\":" + json_quote(node + "_gust") +
-           ",\"object_id\":" + json_quote(node + "_gust") +
-           ",\"command_topic\":" + json_quote(p + "/set/gust") +
-           ",\"payload_press\":\"front\",\"icon\":\"mdi:weather-windy\"" + common;
-  return "{\"name\":\"Volume\",\"unique_id\":" + json_quote(node + "_volume") +
-         ",\"object_id\":" + json_quote(node + "_volume") +
-         ",\"command_topic\":" + json_quote(p + "/set/volume") +
-         ",\"state_topic\":" + json_quote(p + "/state") +
-         ",\"value_template\":\"{{ value_json.volume }}\",\"min\":0,\"max\":1,\"step\":0.01,"
-         "\"mode\":\"slider\",\"icon\":\"mdi:volume-high\"" +
-         common;
+  Json j;
+  if (gust) {  // a button: a gust from the front at the scene's [wind] gust_speed
+    j["name"] = "Gust";
+    j["unique_id"] = node + "_gust";
+    j["object_id"] = node + "_gust";
+    j["command_topic"] = p + "/set/gust";
+    j["payload_press"] = "front";
+    j["icon"] = "mdi:weather-windy";
+  } else {
+    j["name"] = "Volume";
+    j["unique_id"] = node + "_volume";
+    j["object_id"] = node + "_volume";
+    j["command_topic"] = p + "/set/volume";
+    j["state_topic"] = p + "/state";
+    j["value_template"] = "{{ value_json.volume }}";
+    j["min"] = 0;
+    j["max"] = 1;
+    j["step"] = 0.01;
+    j["mode"] = "slider";
+    j["icon"] = "mdi:volume-high";
+  }
+  j["availability_topic"] = p + "/availability";
+  j["payload_available"] = "online";
+  j["payload_not_available"] = "offline";
+  j["device"] = {{"identifiers", {"candela_" + node}},
+                 {"name", "Candela " + p},
+                 {"manufacturer", "Candela"},
+                 {"model", "candela"},
+                 {"sw_version", "0.1.0"}};
+  return j.dump(-1, ' ', false, Json::error_handler_t::replace);
 }
 
 void MqttBridge::on_connect(int rc) {

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <string_view>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace candela::model {
@@ -53,14 +54,7 @@ std::vector<uint8_t> ModelWriter::bytes(int version) const {
 
 void ModelWriter::write(const std::string& path) const {
   const std::vector<uint8_t> b = bytes();
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw RuntimeError("cannot write " + tmp);
-    f.write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
-    if (!f) throw RuntimeError("write failed: " + tmp);
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw RuntimeError("cannot rename to " + path);
+  write_atomic(path, std::string_view(reinterpret_cast<const char*>(b.data()), b.size()));
 }
 
 QuantisedSet quantise_images(const float* images, int count, size_t pixels, DType dtype) {

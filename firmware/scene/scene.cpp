@@ -1,18 +1,10 @@
 #include "scene/scene.h"
 
 #include "core/log.h"
+#include "core/random.h"
 #include "gl/gles.h"
 
 namespace candela {
-namespace {
-// SplitMix64 step: spreads one scene seed into independent element seeds.
-uint64_t mix_seed(uint64_t seed, uint64_t index) {
-  uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (index + 1);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-}  // namespace
 
 Scene::Scene(const SceneDesc& desc, uint64_t seed_override, const std::atomic<bool>* stop)
     : background_(desc.background), camera_(desc.camera), wind_(desc.wind) {
@@ -22,7 +14,7 @@ Scene::Scene(const SceneDesc& desc, uint64_t seed_override, const std::atomic<bo
     const auto& e = desc.elements[i];
     SceneContext ctx;
     ctx.scene_file = desc.file;
-    ctx.seed = e.spec->seed ? e.spec->seed : mix_seed(seed, i);
+    ctx.seed = e.spec->seed ? e.spec->seed : split_seed(seed, i);
     ctx.resources = &resources_;
     if (const std::string p = e.spec->problem(); !p.empty())
       LOG_ERROR("%s: %s", desc.file.c_str(), p.c_str());
@@ -68,8 +60,6 @@ void Scene::draw(FrameContext& frame) {
   for (DrawPass pass : kAllPasses)
     for (auto& e : elements_) e->draw(frame, pass);
 }
-
-void Scene::on_key(Key key) { wind_.on_key(key); }
 
 int Scene::candles_lit() const {
   int lit = -1;

@@ -1,21 +1,20 @@
 // The running scene: elements made from a SceneDesc, the wind field and the
 // resources they share, and the camera. The frame loop calls update() per
-// fixed step and draw() per frame (the order of a frame: scene/element.h);
-// keys become wind events.
+// fixed step and draw() per frame (the order of a frame: scene/element.h).
+// Its wind hears keys, sensors and the control socket through input/InputHub.
 #pragma once
 
 #include <atomic>
 #include <memory>
 #include <vector>
 
-#include "display/display.h"
 #include "scene/element.h"
 #include "scene/scene_file.h"
 #include "wind/wind_field.h"
 
 namespace candela {
 
-class Scene : public DisplayEvents {
+class Scene {
  public:
   // Needs a current GL context. An element that fails to create is logged and
   // left out: the display never goes dark because of one bad element.
@@ -24,7 +23,6 @@ class Scene : public DisplayEvents {
   Scene(const SceneDesc& desc, uint64_t seed_override = 0, const std::atomic<bool>* stop = nullptr);
   void update(const StepContext& step);
   void draw(FrameContext& frame);
-  void on_key(Key key) override;
 
   WindField& wind() { return wind_; }
   size_t element_count() const { return elements_.size(); }

@@ -2,14 +2,13 @@
 
 #include <cmath>
 
+#include "core/random.h"
+
 namespace candela {
 
 uint32_t ImpulseVoices::draw(uint32_t bound) {
   // SplitMix64: gaps between clicks (not event timing, which event_clock.h owns).
-  uint64_t z = (rng_ += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  z ^= z >> 31;
+  const uint64_t z = splitmix64_mix(rng_ += kSplitMix64Gamma);
   return bound ? static_cast<uint32_t>(z % bound) : 0;
 }
 

@@ -3,27 +3,21 @@
 #include <algorithm>
 #include <cmath>
 
-namespace candela {
-namespace {
-// Independent streams for the parts, from one seed (SplitMix64).
-uint64_t part_seed(uint64_t seed, uint64_t part) {
-  uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (part + 1);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-}  // namespace
+#include "core/random.h"
 
+namespace candela {
+
+// The parts draw from independent streams of the one seed (core/random.h).
 SoundSynth::SoundSynth(const SoundSettings& s, int steps_per_second, uint64_t seed)
     : steps_per_second_(std::clamp(steps_per_second, 10, 1000)),
       volume_(s.volume),
       gain_(s.volume),
       glide_(1.0f - std::exp(-1.0f / (kVolumeGlideSeconds * static_cast<float>(kSampleRate)))),
-      voices_(part_seed(seed, 1)),
-      roar_(part_seed(seed, 2), s.roar),
-      fire_(part_seed(seed, 3), s.crackle_rate, s.pop_rate, s.knock_rate, s.crackle),
-      whoosh_(part_seed(seed, 4), s.whoosh, steps_per_second_),
-      candles_(part_seed(seed, 5), s.sputter_rate, s.candle) {}
+      voices_(split_seed(seed, 1)),
+      roar_(split_seed(seed, 2), s.roar),
+      fire_(split_seed(seed, 3), s.crackle_rate, s.pop_rate, s.knock_rate, s.crackle),
+      whoosh_(split_seed(seed, 4), s.whoosh, steps_per_second_),
+      candles_(split_seed(seed, 5), s.sputter_rate, s.candle) {}
 
 int SoundSynth::next_step_samples() const {
   // Step k ends at sample floor((k + 1) * rate / sps): no drift over any run.

@@ -7,19 +7,12 @@
 
 #include "core/error.h"
 #include "core/fixed.h"
+#include "core/random.h"
 #include "elements/eigenflame/arp_driver.h"
 #include "elements/eigenflame/graph_walker.h"
 
 namespace candela::story {
 namespace {
-
-// SplitMix64: one story seed spread into independent segment seeds.
-uint64_t mix_seed(uint64_t seed, uint64_t index) {
-  uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (index + 1);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
 
 [[noreturn]] void fail(const StoryDesc& s, const std::string& key, const std::string& problem) {
   throw ConfigError(s.file, key, problem);
@@ -70,9 +63,8 @@ std::vector<int> clip_frames(const StoryDesc& s, const SegmentSpec& g, const mod
 std::vector<int> walk_frames(const SegmentSpec& g, int n, const model::FlameModel& m,
                              uint64_t seed) {
   (void)g;
-  GraphView view{m.graph.offsets, m.graph.successors, m.graph.cost};
   // No wind steers a planned walk: every frame leans alike.
-  GraphWalker walker(view, m.weights, m.components(),
+  GraphWalker walker(m.graph, m.weights, m.components(),
                      std::vector<Fixed>(static_cast<size_t>(m.frames())), WalkSettings{}, seed);
   std::vector<int> out{walker.current()};
   while (static_cast<int>(out.size()) < n) out.push_back(walker.step(Fixed{}));
@@ -214,7 +206,7 @@ StoryPlan plan_story(const StoryDesc& story, const model::FlameModel& m, uint64_
   int64_t total = 0;
   for (size_t i = 0; i < story.segments.size(); ++i) {
     const SegmentSpec& g = story.segments[i];
-    const uint64_t sseed = mix_seed(seed, i);
+    const uint64_t sseed = split_seed(seed, i);
     switch (g.kind) {
       case SegmentKind::kFrames:
         seg_frames.push_back(clip_frames(story, g, m));

@@ -100,33 +100,6 @@ void WindField::push(const WindEvent& e) {
   }
 }
 
-void WindField::on_key(Key key) {
-  const Fixed g = spec_.gust_speed;
-  switch (key) {
-    case Key::kLeft:  // from the left: blows right
-      push({WindEvent::Type::kGust, g, {}});
-      break;
-    case Key::kRight:
-      push({WindEvent::Type::kGust, -g, {}});
-      break;
-    case Key::kUp:  // from behind the candles: toward the viewer
-      push({WindEvent::Type::kGust, {}, g});
-      break;
-    case Key::kDown:
-      push({WindEvent::Type::kGust, {}, -g});
-      break;
-    case Key::kSpace:  // toward the viewer
-      push({WindEvent::Type::kGust, {}, g});
-      break;
-    case Key::kBlowOut:  // someone blowing from the front-left
-      push({WindEvent::Type::kBlowOut, spec_.blowout_speed * Fixed::from_ratio(3, 5),
-            -spec_.blowout_speed * Fixed::from_ratio(4, 5)});
-      break;
-    default:
-      break;
-  }
-}
-
 void WindField::update(const StepContext& step) {
   if (step.dt.raw > 0) steps_per_second_ = (Fixed::kOne + step.dt.raw / 2) / step.dt.raw;
   if (now_ == 0 && spec_.breeze_interval.raw > 0)

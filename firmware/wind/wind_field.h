@@ -1,7 +1,8 @@
-// The wind every element reads. Sources (a steady wind, gusts from keys,
-// sensors or the camera, the scene's occasional breezes) push WindEvents;
-// elements sample the field at their position each fixed step. An element
-// never knows where the wind came from.
+// The wind every element reads. Sources (a steady wind; gusts from keys,
+// sensors, the camera or the control socket, all through input/InputHub; the
+// scene's occasional breezes) push WindEvents; elements sample the field at
+// their position each fixed step. An element never knows where the wind came
+// from.
 //
 // As in the candle paper, wind starts at a plane S perpendicular to the
 // ground whose normal is the wind's direction; it reaches a point at distance
@@ -17,7 +18,6 @@
 #include "core/fixed.h"
 #include "core/noise_table.h"
 #include "core/random.h"
-#include "display/display.h"
 #include "gl/math.h"
 
 namespace candela {
@@ -69,7 +69,6 @@ class WindField {
 
   explicit WindField(const WindSpec& spec = {});
   void push(const WindEvent& event);
-  void on_key(Key key);
   void update(const StepContext& step);
   WindSample sample(Vec3 position) const { return sample(WindPosition::from(position)); }
   WindSample sample(WindPosition position) const;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "input/key_input.h"
 #include "support/render_harness.h"
 
 namespace candela {
@@ -147,7 +148,7 @@ TEST(CandleRender, BlownOutThenRelit) {
   test::RenderHarness h(scene(3, 0.55, "[element.extinguish]\nrelight_seconds = 1.5\n"), kW, kH, 3);
   h.run(5);
   ASSERT_EQ(bright_regions(h.read(), 180), 3);
-  h.scene().on_key(Key::kBlowOut);
+  h.scene().wind().push(*key_wind_event(Key::kBlowOut, h.scene().wind().spec()));
   LoopSettings one;
   one.max_frames = 1;
   int fewest = 3, dark_frames = 0;
@@ -168,7 +169,7 @@ TEST(CandleRender, BlownOutThenRelit) {
 TEST(CandleRender, BlownOutCandleSmokesThenClears) {
   test::RenderHarness h(scene(1, 0.0, "[element.extinguish]\nrelight_seconds = 8\n"), kW, kH, 3);
   h.run(5);
-  h.scene().on_key(Key::kBlowOut);
+  h.scene().wind().push(*key_wind_event(Key::kBlowOut, h.scene().wind().spec()));
   LoopSettings one;
   one.max_frames = 1;
   // The air above the candle's top, where the flame was and the smoke rises.

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "elements/candle/candle_rig.h"
+#include "input/key_input.h"
 #include "scene/element.h"
 #include "wind/wind_field.h"
 
@@ -160,7 +161,7 @@ TEST(CandleRig, GoesOutAboveTheThresholdAndRelights) {
     rig.update(run.step);
     ASSERT_TRUE(rig.state().lit);
   }
-  run.wind.on_key(Key::kBlowOut);
+  run.wind.push(*key_wind_event(Key::kBlowOut, run.wind.spec()));
   int out_at = -1, relit_at = -1;
   double wind_when_out = 0;
   for (int i = 0; i < 60 * 10; ++i) {

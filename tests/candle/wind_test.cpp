@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "input/input_hub.h"
 #include "scene/element.h"
 #include "wind/fixed_math.h"
 #include "wind/wind_field.h"
@@ -149,8 +150,10 @@ TEST(WindField, BreezesComeOccasionallyAndAreSeeded) {
 
 TEST(WindField, KeysBlowFromTheirSide) {
   WindField w;
-  w.on_key(Key::kLeft);
-  w.on_key(Key::kSpace);
+  InputHub keys({}, w.spec());  // keys reach the wind as every input does
+  keys.on_key(Key::kLeft);
+  keys.on_key(Key::kSpace);
+  keys.drain(w);
   double max_x = 0, max_z = 0;
   for (int i = 0; i < 300; ++i) {
     w.update(step_at(i));

@@ -145,6 +145,26 @@ TEST(ControlSocket, VolumeIsSetAndReported) {
   EXPECT_NEAR(json_number(hub.summary_json(), "volume"), 0.0, 1e-6);
 }
 
+// The window's keys take the road every input takes: queued by the hub,
+// applied by drain(), counted as events (not as control events); quit and
+// other keys blow nothing.
+TEST(InputHubKeys, KeysBecomeWindEvents) {
+  InputHub hub({}, WindSpec{});
+  WindField wind;
+  hub.on_key(Key::kQuit);
+  hub.on_key(Key::kOther);
+  hub.drain(wind);
+  EXPECT_EQ(hub.events_applied(), 0u);
+  EXPECT_EQ(wind.active_gusts(), 0);
+  hub.on_key(Key::kLeft);
+  hub.on_key(Key::kBlowOut);
+  EXPECT_EQ(wind.active_gusts(), 0);  // nothing until the frame loop drains
+  hub.drain(wind);
+  EXPECT_EQ(hub.events_applied(), 2u);
+  EXPECT_EQ(wind.active_gusts(), 2);
+  EXPECT_NEAR(json_number(hub.state_json(), "control_events"), 0, 1e-9);
+}
+
 // Issue 15 (12): strtod took "0x10" as 16; and a long bad word is not echoed whole.
 TEST(ControlCommands, OnlyPlainDecimalNumbers) {
   WindSpec w;

@@ -16,6 +16,7 @@
 
 #include "app/frame_loop.h"
 #include "core/clock.h"
+#include "input/key_input.h"
 #include "sound/sound_output.h"
 #include "sound/sound_synth.h"
 #include "support/allocation_counter.h"
@@ -35,7 +36,7 @@ Heard step_scene(Scene& scene, int steps, int blow_at = -1) {
   StepContext ctx;
   ctx.dt = clock.step_seconds();
   for (int i = 0; i < steps; ++i) {
-    if (i == blow_at) scene.on_key(Key::kBlowOut);
+    if (i == blow_at) scene.wind().push(*key_wind_event(Key::kBlowOut, scene.wind().spec()));
     ctx.step = clock.steps();
     ctx.time = clock.seconds();
     scene.update(ctx);

@@ -1,24 +1,24 @@
-// candela-tool subcommands register themselves: in cmd_NAME.cpp write
-//   static const candela::tool::Registration reg{"noise", "make 1/f^beta noise tables", run_noise};
-// where run_noise(int argc, char** argv) gets argv[0] = "candela-tool noise".
-// The file must be compiled into the candela-tool executable itself
-// (target_sources), not into a static library, or the linker drops it.
+// candela-tool's subcommands: each cmd_NAME.cpp reads its own options with a
+// CLI::App of its own (argv[0] is "candela-tool NAME") and defines its entry
+// point here; main.cpp lists them all for CLI11's add_subcommand. A new
+// subcommand is declared here and listed there (nothing registers itself, so
+// nothing can be dropped by the linker).
 #pragma once
-
-#include <string_view>
 
 namespace candela::tool {
 
-using SubcommandFn = int (*)(int argc, char** argv);
-
-struct Subcommand {
-  std::string_view name;
-  std::string_view summary;
-  SubcommandFn run;
-};
-
-struct Registration {
-  Registration(std::string_view name, std::string_view summary, SubcommandFn run);
-};
+int cmd_build(int argc, char** argv);
+int cmd_flame_photo(int argc, char** argv);
+int cmd_ingest(int argc, char** argv);
+int cmd_inspect(int argc, char** argv);
+int cmd_measure(int argc, char** argv);
+int cmd_noise(int argc, char** argv);
+int cmd_render_weights(int argc, char** argv);
+int cmd_simulate(int argc, char** argv);
+int cmd_story(int argc, char** argv);
+int cmd_studio(int argc, char** argv);
+int cmd_synth(int argc, char** argv);
+int cmd_texturize(int argc, char** argv);
+int cmd_transition(int argc, char** argv);
 
 }  // namespace candela::tool

@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+
+#include "core/wxh.h"
 
 namespace candela::fluid {
 namespace {
@@ -27,18 +30,12 @@ std::vector<std::string> split(const std::string& s, char sep) {
 }  // namespace
 
 void parse_size(const std::string& option, const std::string& text, int& w, int& h) {
-  const auto x = text.find('x');
-  const std::string hint = option + ": expected WIDTHxHEIGHT (e.g. 128x128), got \"" + text + "\"";
-  if (x == std::string::npos) throw std::invalid_argument(hint);
-  char* end = nullptr;
-  const std::string a = text.substr(0, x), b = text.substr(x + 1);
-  const long wl = std::strtol(a.c_str(), &end, 10);
-  if (a.empty() || *end) throw std::invalid_argument(hint);
-  const long hl = std::strtol(b.c_str(), &end, 10);
-  if (b.empty() || *end) throw std::invalid_argument(hint);
-  if (wl < 1 || hl < 1 || wl > 65536 || hl > 65536) throw std::invalid_argument(hint);
-  w = static_cast<int>(wl);
-  h = static_cast<int>(hl);
+  const std::optional<WxH> s = parse_wxh(text, {1, 1}, {65536, 65536});
+  if (!s)
+    throw std::invalid_argument(option + ": expected WIDTHxHEIGHT (e.g. 128x128), got \"" + text +
+                                "\"");
+  w = s->width;
+  h = s->height;
 }
 
 HeatSource parse_source(const std::string& text) {

@@ -38,7 +38,6 @@ int run_flame_photo(int argc, char** argv) {
   }
 }
 
-const candela::tool::Registration reg{
-    "flame-photo", "procedural flame photograph (PNG) for texturize", run_flame_photo};
-
 }  // namespace
+
+int candela::tool::cmd_flame_photo(int argc, char** argv) { return run_flame_photo(argc, argv); }

@@ -225,7 +225,6 @@ int run_simulate(int argc, char** argv) {
   }
 }
 
-const candela::tool::Registration reg{
-    "simulate", "2-D fire simulation -> flame clip (PNG + fields)", run_simulate};
-
 }  // namespace
+
+int candela::tool::cmd_simulate(int argc, char** argv) { return run_simulate(argc, argv); }

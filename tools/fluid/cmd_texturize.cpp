@@ -140,7 +140,6 @@ int run_texturize(int argc, char** argv) {
   }
 }
 
-const candela::tool::Registration reg{
-    "texturize", "simulated clip + fire photo -> detailed fire animation", run_texturize};
-
 }  // namespace
+
+int candela::tool::cmd_texturize(int argc, char** argv) { return run_texturize(argc, argv); }

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace candela::fluid {
@@ -68,15 +68,7 @@ void write_field_file(const std::string& path, const FieldFrame& f) {
     for (double x : f.u.data) put_f32(b, static_cast<float>(x));
     for (double x : f.v.data) put_f32(b, static_cast<float>(x));
   }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
-    if (!out) throw RuntimeError("cannot write field file " + tmp);
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw RuntimeError("cannot rename " + tmp + " to " + path + ": " + ec.message());
+  write_atomic(path, std::string_view(reinterpret_cast<const char*>(b.data()), b.size()));
 }
 
 FieldFrame read_field_file(const std::string& path) {

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace candela::fluid {
@@ -18,19 +18,6 @@ std::string numbered(const std::string& dir, const char* sub, const char* stem, 
   char name[64];
   std::snprintf(name, sizeof name, "%s_%06d.%s", stem, index, ext);
   return (std::filesystem::path(dir) / sub / name).string();
-}
-
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
 }
 
 }  // namespace
@@ -46,38 +33,22 @@ std::string manifest_path(const std::string& dir) {
 }
 
 void write_manifest(const std::string& dir, const SimManifest& m) {
+  toml::table clip{
+      {"name", m.name},     {"source", m.source}, {"command", m.command},
+      {"frames", m.frames}, {"fps", m.fps},       {"width", m.width},
+      {"height", m.height}, {"colour", m.colour}, {"frame_pattern", "frames/frame_%06d.png"}};
+  toml::table manifest{{"clip", std::move(clip)}};
+  if (m.has_fields)
+    manifest.insert("fields", toml::table{{"pattern", "fields/field_%06d.cfld"},
+                                          {"format", "CFLD 1"},
+                                          {"width", m.grid_width},
+                                          {"height", m.grid_height},
+                                          {"t_ambient", m.t_ambient},
+                                          {"t_reference", m.t_reference}});
   std::ostringstream o;
-  o.precision(17);
   o << "# Candela flame clip: PNG frames (+ optional simulation fields).\n"
-    << "[clip]\n"
-    << "name = " << quoted(m.name) << "\n"
-    << "source = " << quoted(m.source) << "\n"
-    << "command = " << quoted(m.command) << "\n"
-    << "frames = " << m.frames << "\n"
-    << "fps = " << m.fps << "\n"
-    << "width = " << m.width << "\n"
-    << "height = " << m.height << "\n"
-    << "colour = " << quoted(m.colour) << "\n"
-    << "frame_pattern = \"frames/frame_%06d.png\"\n";
-  if (m.has_fields) {
-    o << "\n[fields]\n"
-      << "pattern = \"fields/field_%06d.cfld\"\n"
-      << "format = \"CFLD 1\"\n"
-      << "width = " << m.grid_width << "\n"
-      << "height = " << m.grid_height << "\n"
-      << "t_ambient = " << m.t_ambient << "\n"
-      << "t_reference = " << m.t_reference << "\n";
-  }
-  const std::string path = manifest_path(dir);
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << o.str();
-    if (!out) throw RuntimeError("cannot write " + tmp);
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw RuntimeError("cannot rename " + tmp + " to " + path + ": " + ec.message());
+    << toml::toml_formatter(manifest) << "\n";
+  write_atomic(manifest_path(dir), o.str());
 }
 
 SimManifest read_manifest(const std::string& dir) {

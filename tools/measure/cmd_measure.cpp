@@ -355,8 +355,7 @@ int run_measure(int argc, char** argv) {
   }
 }
 
-const Registration reg{"measure", "realism yardsticks: features, spectra, repeats, --against real",
-                       run_measure};
-
 }  // namespace
 }  // namespace candela::tool
+
+int candela::tool::cmd_measure(int argc, char** argv) { return run_measure(argc, argv); }

@@ -118,7 +118,6 @@ int run_build(int argc, char** argv) {
   return 0;
 }
 
-const candela::tool::Registration reg{
-    "build", "dataset -> flame model file (EigenFires, motion graph)", run_build};
-
 }  // namespace
+
+int candela::tool::cmd_build(int argc, char** argv) { return run_build(argc, argv); }

@@ -83,7 +83,6 @@ int run_ingest(int argc, char** argv) {
   return 0;
 }
 
-const candela::tool::Registration reg{"ingest", "footage -> aligned gray flame dataset",
-                                      run_ingest};
-
 }  // namespace
+
+int candela::tool::cmd_ingest(int argc, char** argv) { return run_ingest(argc, argv); }

@@ -67,6 +67,6 @@ int run_inspect(int argc, char** argv) {
   }
 }
 
-const candela::tool::Registration reg{"inspect", "print what a model file holds", run_inspect};
-
 }  // namespace
+
+int candela::tool::cmd_inspect(int argc, char** argv) { return run_inspect(argc, argv); }

@@ -73,7 +73,8 @@ int run_render_weights(int argc, char** argv) {
   return 0;
 }
 
-const candela::tool::Registration reg{"render-weights", "render a flame from EigenFire weights",
-                                      run_render_weights};
-
 }  // namespace
+
+int candela::tool::cmd_render_weights(int argc, char** argv) {
+  return run_render_weights(argc, argv);
+}

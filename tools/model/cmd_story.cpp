@@ -122,7 +122,6 @@ int run_story(int argc, char** argv) {
   return 0;
 }
 
-const candela::tool::Registration reg{"story", "plan and render a story of clips and transitions",
-                                      run_story};
-
 }  // namespace
+
+int candela::tool::cmd_story(int argc, char** argv) { return run_story(argc, argv); }

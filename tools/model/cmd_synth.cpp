@@ -83,7 +83,6 @@ int run_synth(int argc, char** argv) {
   return 0;
 }
 
-const candela::tool::Registration reg{"synth", "sample and render new flames from a model's ARP",
-                                      run_synth};
-
 }  // namespace
+
+int candela::tool::cmd_synth(int argc, char** argv) { return run_synth(argc, argv); }

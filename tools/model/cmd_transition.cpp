@@ -98,7 +98,6 @@ int run_transition(int argc, char** argv) {
   return 0;
 }
 
-const candela::tool::Registration reg{"transition", "find a motion transition between two frames",
-                                      run_transition};
-
 }  // namespace
+
+int candela::tool::cmd_transition(int argc, char** argv) { return run_transition(argc, argv); }

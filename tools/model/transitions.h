@@ -1,6 +1,8 @@
 // Motion transitions between two frames in EigenFire weight space
 // (Nikfetrat & Lee): low-pass blending, Direct Bridging, End Growing
-// Connection; and the motion graph built from the same distances.
+// Connection, over Eigen matrices: each the firmware's planner
+// (story/weight_transitions.h, one implementation for the device and the
+// tools); and the motion graph built from the same distances.
 #pragma once
 
 #include <Eigen/Dense>
@@ -16,6 +18,7 @@ struct WeightSpace {
   Eigen::MatrixXf w;         // frames x E
   std::vector<int> clip_of;  // frame -> clip index (for "frames before alpha / after beta")
   std::vector<int> clip_first, clip_end;
+  std::vector<model::ClipInfo> clips;
   Eigen::MatrixXf cols;  // E x frames: the same, one contiguous column per frame
   float distance(int a, int b) const { return (cols.col(a) - cols.col(b)).norm(); }
   int frames() const { return static_cast<int>(w.rows()); }

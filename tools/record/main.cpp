@@ -2,7 +2,9 @@
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
+#include <optional>
 
+#include "core/wxh.h"
 #include "preview.h"
 #include "recorder.h"
 
@@ -78,24 +80,23 @@ int main(int argc, char** argv) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : kExitUsage;
   }
-  if (!size.empty()) {
-    char extra = 0;
-    if (std::sscanf(size.c_str(), "%dx%d%c", &o.width, &o.height, &extra) != 2 || o.width < 16 ||
-        o.height < 16 || o.width > 8192 || o.height > 8192) {
-      std::fprintf(stderr, "candela-record: --size: expected WxH, e.g. 640x480, got '%s'\n",
-                   size.c_str());
-      return kExitUsage;
+  // --size and --preview-size: WxH, each side 16 to 8192.
+  const auto parse_size = [](const std::string& text, const char* option, const char* example,
+                             int& w, int& h) {
+    const std::optional<candela::WxH> s = candela::parse_wxh(text, {16, 16}, {8192, 8192});
+    if (!s) {
+      std::fprintf(stderr, "candela-record: %s: expected WxH, e.g. %s, got '%s'\n", option, example,
+                   text.c_str());
+      return false;
     }
-  }
-  if (!preview_size.empty()) {
-    char extra = 0;
-    if (std::sscanf(preview_size.c_str(), "%dx%d%c", &po.width, &po.height, &extra) != 2 ||
-        po.width < 16 || po.height < 16 || po.width > 8192 || po.height > 8192) {
-      std::fprintf(stderr, "candela-record: --preview-size: expected WxH, e.g. 320x240, got '%s'\n",
-                   preview_size.c_str());
-      return kExitUsage;
-    }
-  }
+    w = s->width;
+    h = s->height;
+    return true;
+  };
+  if (!size.empty() && !parse_size(size, "--size", "640x480", o.width, o.height)) return kExitUsage;
+  if (!preview_size.empty() &&
+      !parse_size(preview_size, "--preview-size", "320x240", po.width, po.height))
+    return kExitUsage;
   if (o.frames == 0 && o.seconds <= 0)
     std::fprintf(stderr, "candela-record: recording until Ctrl-C (no --frames or --seconds)\n");
   std::signal(SIGINT, on_signal);

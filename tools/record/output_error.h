@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "core/error.h"
+#include "core/atomic_file.h"
 
 namespace candela::record {
 
@@ -25,15 +25,10 @@ const char* fault_prefix(OutputFault fault);
 
 // A write into the output folder failed. what() names the file and says why
 // (strerror); error_number() is the errno behind it.
-class OutputError : public RuntimeError {
+class OutputError : public FileError {
  public:
-  OutputError(const std::string& message, int error_number)
-      : RuntimeError(message), error_number_(error_number) {}
-  int error_number() const { return error_number_; }
-  OutputFault fault() const { return fault_from_errno(error_number_); }
-
- private:
-  int error_number_;
+  using FileError::FileError;
+  OutputFault fault() const { return fault_from_errno(error_number()); }
 };
 
 // The fault behind any exception: an OutputError's, else kNone (nothing

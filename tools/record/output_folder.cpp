@@ -3,9 +3,9 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
+
+#include "core/atomic_file.h"
 
 namespace candela::record {
 
@@ -39,43 +39,23 @@ std::string OutputFolder::create() const {
   return "";
 }
 
-void write_all(int fd, const std::string& text, const std::string& path) {
-  size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int err = n < 0 ? errno : ENOSPC;
-      throw OutputError(path + ": write failed: " + std::strerror(err), err);
-    }
-    done += static_cast<size_t>(n);
+namespace {
+template <class Write>
+void as_output_error(const Write& write) {
+  try {
+    write();
+  } catch (const FileError& e) {
+    throw OutputError(e.what(), e.error_number());
   }
+}
+}  // namespace
+
+void write_all(int fd, const std::string& text, const std::string& path) {
+  as_output_error([&] { candela::write_all(fd, text, path); });
 }
 
 void write_atomic(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    const int err = errno;
-    throw OutputError(path + ": cannot write: " + std::strerror(err), err);
-  }
-  try {
-    write_all(fd, text, path);
-  } catch (const OutputError&) {
-    close(fd);
-    unlink(tmp.c_str());
-    throw;
-  }
-  if (close(fd) != 0) {
-    const int err = errno;
-    unlink(tmp.c_str());
-    throw OutputError(path + ": write failed: " + std::strerror(err), err);
-  }
-  if (rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    unlink(tmp.c_str());
-    throw OutputError(path + ": cannot rename into place: " + std::strerror(err), err);
-  }
+  as_output_error([&] { candela::write_atomic(path, text); });
 }
 
 bool ManifestReserve::grow(size_t bytes) {

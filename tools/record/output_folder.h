@@ -34,12 +34,10 @@ class OutputFolder {
   std::string path_, frames_dir_, manifest_path_, info_path_, reserve_path_;
 };
 
-// Writes all of `text` to the open file `fd` (retrying short writes and
-// EINTR); throws OutputError naming `path` ("<path>: write failed: <strerror>").
+// core/atomic_file.h's write_all and write_atomic (path.tmp, then rename),
+// their FileError thrown as an OutputError (the same message and errno, and
+// its fault()).
 void write_all(int fd, const std::string& text, const std::string& path);
-
-// Writes `text` to `path` atomically (path.tmp, then rename); throws
-// OutputError naming the file and carrying errno. Leaves no .tmp behind.
 void write_atomic(const std::string& path, const std::string& text);
 
 // Room kept for the final manifest (a file of reserved blocks): a full disk

@@ -9,10 +9,10 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "core/image.h"
-#include "core/json.h"
 #include "core/log.h"
 #include "display/display.h"
 #include "gl/gles.h"
@@ -156,17 +156,19 @@ std::string RecordPreview::error() const {
 
 std::string RecordPreview::manifest_json() const {
   std::lock_guard<std::mutex> lock(status_mutex_);
-  std::string s = "{\"mode\":" + json_quote(options_.mode) +
-                  ",\"backend\":" + json_quote(backend_) +
-                  ",\"opened\":" + (backend_.empty() ? "false" : "true") +
-                  ",\"shown\":" + std::to_string(shown_.load()) +
-                  ",\"offered\":" + std::to_string(offered_.load()) +
-                  ",\"last_sequence\":" + std::to_string(last_shown_sequence_.load());
-  if (!backend_.empty())
-    s += ",\"width\":" + std::to_string(display_width_) +
-         ",\"height\":" + std::to_string(display_height_);
-  if (!error_.empty()) s += ",\"error\":" + json_quote(error_);
-  return s + "}";
+  nlohmann::ordered_json j;
+  j["mode"] = options_.mode;
+  j["backend"] = backend_;
+  j["opened"] = !backend_.empty();
+  j["shown"] = shown_.load();
+  j["offered"] = offered_.load();
+  j["last_sequence"] = last_shown_sequence_.load();
+  if (!backend_.empty()) {
+    j["width"] = display_width_;
+    j["height"] = display_height_;
+  }
+  if (!error_.empty()) j["error"] = error_;
+  return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 
 std::string RecordPreview::summary() const {

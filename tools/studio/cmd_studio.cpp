@@ -29,8 +29,6 @@ int run_studio(int argc, char** argv) {
   return 1;
 }
 
-const candela::tool::Registration reg{
-    "studio", "the flame studio window: play, edit weights and colour, PCA tracks, save a scene",
-    run_studio};
-
 }  // namespace
+
+int candela::tool::cmd_studio(int argc, char** argv) { return run_studio(argc, argv); }

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "elements/eigenflame/eigenflame.h"
 #include "model/flame_model.h"
@@ -260,16 +260,7 @@ std::string Session::scene_text() const {
 
 void Session::save_scene(const std::string& path) const {
   if (!ok()) throw RuntimeError(path + ": no model open, nothing to save");
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << scene_text();
-    out.close();
-    if (!out) throw RuntimeError(path + ": cannot write the scene");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw RuntimeError(path + ": cannot write the scene: " + ec.message());
+  write_atomic(path, scene_text());
 }
 
 }  // namespace candela::studio

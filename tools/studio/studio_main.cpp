@@ -3,7 +3,9 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <optional>
 
+#include "core/wxh.h"
 #include "studio.h"
 
 namespace {
@@ -32,17 +34,15 @@ int run(int argc, char** argv) {
     return app.exit(e);
   }
   if (!size.empty()) {
-    int w = 0, h = 0;
-    char x = 0;
-    if (std::sscanf(size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 200 || h < 150 ||
-        w > 8192 || h > 8192) {
+    const std::optional<candela::WxH> s = candela::parse_wxh(size, {200, 150}, {8192, 8192});
+    if (!s) {
       std::fprintf(stderr,
                    "candela-tool studio: --size: expected WxH (200x150 to 8192x8192), got '%s'\n",
                    size.c_str());
       return 2;
     }
-    o.width = w;
-    o.height = h;
+    o.width = s->width;
+    o.height = s->height;
   }
   o.vsync = !no_vsync;
   return candela::studio::run_studio(o);

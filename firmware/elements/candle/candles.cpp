@@ -6,96 +6,21 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/random.h"
+#include "elements/candle/candle_body_mesh.h"
 #include "elements/candle/flame_still.h"
 #include "elements/candle/flame_warp.h"
 #include "gl/instances.h"
 #include "gl/program.h"
 #include "gl/texture.h"
-#include "scene/params.h"
 
 namespace candela {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 constexpr int kFlameVec4 = 12;  // per flame instance: 10 lines, anchor, pose
 constexpr int kBodyVec4 = 3;
 constexpr int kGlowVec4 = 2;
 constexpr int kSmokeVec4 = 2;
 constexpr float kWickLength = 0.011f;  // metres, scaled by flame_scale
-constexpr float kPoolDepth = 0.15f;    // melt pool depth, in radii
-
-// Reads the per-candle keys shared by [[element.candle]] entries.
-CandleDesc read_candle(ParamReader& r, const CandleDesc& def) {
-  CandleDesc c = def;
-  c.position = r.vec3("position", def.position);
-  c.height = static_cast<float>(r.number("height", def.height, 0.005, 2));
-  c.radius = static_cast<float>(r.number("radius", def.radius, 0.003, 0.5));
-  c.wax = r.color("wax", def.wax);
-  c.flame_scale = static_cast<float>(r.number("flame_scale", def.flame_scale, 0.1, 10));
-  c.seed = static_cast<uint64_t>(r.integer("seed", 0, 0, INT64_MAX));
-  c.params = parse_candle_params(r, def.params);
-  r.finish();
-  return c;
-}
-
-// The wax body: side, melted top with a raised rim and a pool, and the wick.
-// Per vertex: (x, z on a unit circle scaled by the ring's radius, y parameter,
-// kind) and a normal. Kind 0: side (y = fraction of height); 1: top
-// (y = offset in radii from the top edge); 2: wick (y = fraction of its length).
-struct BodyMesh {
-  std::vector<float> vertices;  // 7 floats each
-  std::vector<unsigned short> indices;
-};
-BodyMesh make_body_mesh(int segments, int wick_segments) {
-  BodyMesh m;
-  auto ring = [&](int n, float rad, float y, float kind, float nx_scale, float ny) {
-    const auto first = static_cast<unsigned short>(m.vertices.size() / 7);
-    for (int i = 0; i <= n; ++i) {
-      const float a = 2 * kPi * static_cast<float>(i) / n;
-      const float c = std::cos(a), s = std::sin(a);
-      m.vertices.insert(m.vertices.end(),
-                        {c * rad, s * rad, y, kind, c * nx_scale, ny, s * nx_scale});
-    }
-    return first;
-  };
-  // Counter-clockwise seen from outside/above, so back faces can be culled.
-  auto strip = [&](int n, unsigned short lower, unsigned short upper) {
-    for (int i = 0; i < n; ++i) {
-      const auto a0 = static_cast<unsigned short>(lower + i);
-      const auto a1 = static_cast<unsigned short>(lower + i + 1);
-      const auto b0 = static_cast<unsigned short>(upper + i);
-      const auto b1 = static_cast<unsigned short>(upper + i + 1);
-      m.indices.insert(m.indices.end(), {a0, b0, a1, a1, b0, b1});
-    }
-  };
-  // Side.
-  const auto s0 = ring(segments, 1.0f, 0.0f, 0, 1, 0);
-  const auto s1 = ring(segments, 1.0f, 1.0f, 0, 1, 0);
-  strip(segments, s0, s1);
-  // Melted top, outside in (radius factor, offset in radii, normal's
-  // outward tilt): the rim's lip, its inner slope, the pool and its middle.
-  const float profile[][3] = {{1.0f, 0.0f, 0.9f}, {0.95f, 0.05f, 0.1f}, {0.8f, -0.1f, -0.45f}};
-  unsigned short prev = ring(segments, profile[0][0], profile[0][1], 1, profile[0][2], 0.45f);
-  for (size_t k = 1; k < std::size(profile); ++k) {
-    const float t = profile[k][2];
-    const float ny = std::sqrt(std::max(0.0f, 1 - t * t));
-    const auto cur = ring(segments, profile[k][0], profile[k][1], 1, t, ny);
-    // Going inward the "upper" ring is the inner one.
-    strip(segments, prev, cur);
-    prev = cur;
-  }
-  // The pool's middle: a fan.
-  const auto centre = static_cast<unsigned short>(m.vertices.size() / 7);
-  m.vertices.insert(m.vertices.end(), {0, 0, -kPoolDepth, 1, 0, 1, 0});
-  for (int i = 0; i < segments; ++i)
-    m.indices.insert(m.indices.end(), {static_cast<unsigned short>(prev + i), centre,
-                                       static_cast<unsigned short>(prev + i + 1)});
-  // Wick: a thin cylinder from the pool up.
-  const auto w0 = ring(wick_segments, 1.0f, 0.0f, 2, 1, 0);
-  const auto w1 = ring(wick_segments, 1.0f, 1.0f, 2, 1, 0);
-  strip(wick_segments, w0, w1);
-  return m;
-}
 
 class Candles final : public Element {
  public:
@@ -142,11 +67,7 @@ class Candles final : public Element {
   Program flame_prog_, body_prog_;
   Billboards glows_, smokes_;
   Texture still_;
-  Buffer flame_mesh_vbo_, flame_mesh_ibo_;
-  Buffer body_mesh_vbo_, body_mesh_ibo_;
-  InstanceBuffer flames_, bodies_;  // filled in prepare(), every frame
-  VertexArray flame_vao_, body_vao_;
-  GLsizei flame_index_count_ = 0, body_index_count_ = 0;
+  InstancedMesh flames_, bodies_;  // instances filled in prepare(), every frame
 
   std::vector<uint32_t> order_;  // candles far to near
   Vec3 sorted_for_{1e30f, 0, 0};
@@ -208,45 +129,14 @@ Candles::Candles(const CandlesSpec& spec, const SceneContext& ctx)
           if (still.at(x, y, 3) > 0) return true;
       return false;
     });
-    flame_index_count_ = static_cast<GLsizei>(idx.size());
-    flame_vao_ = make_vertex_array();
-    glBindVertexArray(flame_vao_.get());
-    flame_mesh_vbo_ = make_buffer();
-    glBindBuffer(GL_ARRAY_BUFFER, flame_mesh_vbo_.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(float)), v.data(),
-                 GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
-    flame_mesh_ibo_ = make_buffer();
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, flame_mesh_ibo_.get());
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * 2), idx.data(),
-                 GL_STATIC_DRAW);
-    flames_ = InstanceBuffer(kFlameVec4, n);
-    flames_.bind_attributes(1);
+    flames_ = InstancedMesh(v, {2}, idx, kFlameVec4, n);
   }
   // Glow: a camera-facing quad per candle.
   glows_ = Billboards("candle_glow.vert", "candle_glow.frag", kGlowVec4, n);
   // Body: one mesh, per-instance placement, wax colour and flame light.
   {
     const BodyMesh m = make_body_mesh(16, 5);
-    body_index_count_ = static_cast<GLsizei>(m.indices.size());
-    body_vao_ = make_vertex_array();
-    glBindVertexArray(body_vao_.get());
-    body_mesh_vbo_ = make_buffer();
-    glBindBuffer(GL_ARRAY_BUFFER, body_mesh_vbo_.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.vertices.size() * sizeof(float)),
-                 m.vertices.data(), GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, 7 * sizeof(float), nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 7 * sizeof(float),
-                          reinterpret_cast<const void*>(4 * sizeof(float)));
-    body_mesh_ibo_ = make_buffer();
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, body_mesh_ibo_.get());
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(m.indices.size() * 2),
-                 m.indices.data(), GL_STATIC_DRAW);
-    bodies_ = InstanceBuffer(kBodyVec4, n);
-    bodies_.bind_attributes(2);
+    bodies_ = InstancedMesh(m.vertices, {4, 3}, m.indices, kBodyVec4, n);
   }
   // Smoke wisps of candles that just went out.
   smokes_ = Billboards("candle_smoke.vert", "candle_smoke.frag", kSmokeVec4, n);
@@ -265,10 +155,10 @@ void Candles::prepare(const FrameContext& frame) {
     });
     sorted_for_ = cam;
   }
-  flames_.clear();
+  flames_.instances().clear();
   glows_.instances().clear();
   smokes_.instances().clear();
-  bodies_.set_count(static_cast<int>(order_.size()));
+  bodies_.instances().set_count(static_cast<int>(order_.size()));
   const float base_y = look_.layout.base.to_float();
   for (size_t k = 0; k < order_.size(); ++k) {
     const uint32_t i = order_[k];
@@ -292,7 +182,7 @@ void Candles::prepare(const FrameContext& frame) {
     };
 
     // Bodies go near to far, so hidden wax fails the depth test early.
-    float* b = bodies_.record(order_.size() - 1 - k);
+    float* b = bodies_.instances().record(order_.size() - 1 - k);
     // The flame's light: from the middle of the morphed centre line.
     const ControlLines& L = rig.lines();
     const float mx = 0.5f * (L.line[0].px.to_float() + L.line[2].qx.to_float());
@@ -305,7 +195,7 @@ void Candles::prepare(const FrameContext& frame) {
     std::copy(std::begin(body), std::end(body), b);
 
     if (s.lit && scale > 1e-5f) {
-      float* fl = flames_.add();
+      float* fl = flames_.instances().add();
       for (int l = 0; l < kMaxControlLines; ++l) {
         const ControlLine& c = L.line[l];
         fl[l * 4 + 0] = c.px.to_float();
@@ -351,8 +241,8 @@ void Candles::prepare(const FrameContext& frame) {
       std::copy(std::begin(smoke), std::end(smoke), sm);
     }
   }
-  flames_.upload();
-  bodies_.upload();
+  flames_.instances().upload();
+  bodies_.instances().upload();
   glows_.instances().upload();
   smokes_.instances().upload();
 }
@@ -382,9 +272,7 @@ void Candles::draw(const FrameContext& frame, DrawPass pass) {
     body_prog_.use();
     glUniformMatrix4fv(body_vp_, 1, GL_FALSE, frame.view_projection.m);
     glUniform3f(body_camera_, cam.x, cam.y, cam.z);
-    glBindVertexArray(body_vao_.get());
-    glDrawElementsInstanced(GL_TRIANGLES, body_index_count_, GL_UNSIGNED_SHORT, nullptr,
-                            static_cast<GLsizei>(desc_.size()));
+    bodies_.draw();
     glDisable(GL_CULL_FACE);
   } else {
     glEnable(GL_DEPTH_TEST);
@@ -410,9 +298,7 @@ void Candles::draw(const FrameContext& frame, DrawPass pass) {
       glActiveTexture(GL_TEXTURE0);
       glBindTexture(GL_TEXTURE_2D, still_.get());
       glUniform1i(fu_.still, 0);
-      glBindVertexArray(flame_vao_.get());
-      glDrawElementsInstanced(GL_TRIANGLES, flame_index_count_, GL_UNSIGNED_SHORT, nullptr,
-                              flames_.count());
+      flames_.draw();
     }
     if (smokes_.count()) {
       glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
@@ -423,105 +309,14 @@ void Candles::draw(const FrameContext& frame, DrawPass pass) {
   glBindVertexArray(0);
 }
 
-// A deterministic candle layout for [element.grid]: rows of candles with
-// seeded jitter and sizes.
-void add_grid(ParamReader& g, const CandleDesc& def, std::vector<CandleDesc>& out) {
-  const auto count = static_cast<int>(g.integer("count", 9, 1, 4096));
-  const auto columns = static_cast<int>(g.integer("columns", 0, 0, 4096));
-  const float spacing = static_cast<float>(g.number("spacing", 0.12, 0.01, 10));
-  const Vec3 centre = g.vec3("center", {});
-  const float jitter = static_cast<float>(g.number("jitter", 0.3, 0, 1));
-  const float hmin = static_cast<float>(g.number("height_min", 0.07, 0.005, 2));
-  const float hmax = static_cast<float>(g.number("height_max", 0.16, 0.005, 2));
-  const float rmin = static_cast<float>(g.number("radius_min", 0.018, 0.003, 0.5));
-  const float rmax = static_cast<float>(g.number("radius_max", 0.026, 0.003, 0.5));
-  const auto seed = static_cast<uint64_t>(g.integer("seed", 1, 0, INT64_MAX));
-  if (hmax < hmin) g.fail("height_max", "expected height_max >= height_min");
-  if (rmax < rmin) g.fail("radius_max", "expected radius_max >= radius_min");
-  g.finish();
-  const int cols =
-      columns > 0 ? columns : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
-  const int rows = (count + cols - 1) / cols;
-  Pcg32 rng(seed, 0x67726964);
-  for (int i = 0; i < count; ++i) {
-    const int r = i / cols, c = i % cols;
-    CandleDesc d = def;
-    const float jx = (static_cast<float>(rng.unit_double()) - 0.5f) * jitter * spacing;
-    const float jz = (static_cast<float>(rng.unit_double()) - 0.5f) * jitter * spacing;
-    d.position = centre + Vec3{(static_cast<float>(c) - (cols - 1) * 0.5f) * spacing + jx, 0,
-                               (static_cast<float>(r) - (rows - 1) * 0.5f) * spacing + jz};
-    d.height = hmin + (hmax - hmin) * static_cast<float>(rng.unit_double());
-    d.radius = rmin + (rmax - rmin) * static_cast<float>(rng.unit_double());
-    out.push_back(d);
-  }
-}
-
-std::unique_ptr<ElementSpec> parse_kind(ParamReader& r) { return parse_candles(r); }
-
 }  // namespace
 
 uint64_t candle_seed(uint64_t element_seed, size_t index) {
-  uint64_t z = element_seed + 0x9E3779B97F4A7C15ULL * (index + 1);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return (z ^ (z >> 31)) | 1;
-}
-
-std::unique_ptr<CandlesSpec> parse_candles(ParamReader& r) {
-  auto spec = std::make_unique<CandlesSpec>();
-  FlameLook& look = spec->look;
-  look.flame_height = static_cast<float>(r.number("flame_height", look.flame_height, 0.001, 5));
-  look.mesh = static_cast<int>(r.integer("mesh", look.mesh, 1, 64));
-  look.warp_a = static_cast<float>(r.number("warp_a", look.warp_a, 0.001, 1));
-  look.warp_b = static_cast<float>(r.number("warp_b", look.warp_b, 0.5, 2));
-  look.warp_p = static_cast<float>(r.number("warp_p", look.warp_p, 0, 1));
-  look.glow_scale = static_cast<float>(r.number("glow_scale", look.glow_scale, 0, 20));
-  look.glow_strength = static_cast<float>(r.number("glow_strength", look.glow_strength, 0, 10));
-  look.glow_falloff = static_cast<float>(r.number("glow_falloff", look.glow_falloff, 0.01, 1000));
-  const std::string still = r.path("still");
-  look.layout.base = r.fixed("still_base", look.layout.base.to_double(), 0, 0.9);
-  look.layout.tip = r.fixed("still_tip", look.layout.tip.to_double(), 0.1, 1);
-  if (look.layout.tip <= look.layout.base) r.fail("still_tip", "expected still_tip > still_base");
-  double aspect = 0.5;
-  if (!still.empty()) {
-    try {
-      auto img = std::make_shared<Image>(read_png(still, 4));
-      aspect = static_cast<double>(img->width) / img->height;
-      look.still = std::move(img);
-    } catch (const std::exception& e) {
-      r.fail("still", std::string("expected an RGBA PNG flame still: ") + e.what());
-    }
-  }
-  // Half-width of V1/V2 as a fraction of the still's width.
-  look.layout.half_width =
-      Fixed::from_double(r.number("still_half_width", 0.18, 0.01, 0.5) * aspect);
-
-  CandleDesc def;
-  def.params = parse_candle_params(r, CandleParams{});
-  def.height = static_cast<float>(r.number("height", def.height, 0.005, 2));
-  def.radius = static_cast<float>(r.number("radius", def.radius, 0.003, 0.5));
-  def.wax = r.color("wax", def.wax);
-  def.flame_scale = static_cast<float>(r.number("flame_scale", def.flame_scale, 0.1, 10));
-  for (ParamReader& c : r.table_array("candle")) spec->candles.push_back(read_candle(c, def));
-  if (r.has("grid")) {
-    ParamReader g = r.table("grid");
-    add_grid(g, def, spec->candles);
-  }
-  if (spec->candles.empty())
-    r.fail("candle", "expected at least one [[element.candle]] or an [element.grid]");
-  r.finish();
-  return spec;
+  return split_seed(element_seed, index) | 1;
 }
 
 std::unique_ptr<Element> CandlesSpec::create(const SceneContext& context) const {
   return std::make_unique<Candles>(*this, context);
-}
-
-const ElementKind& candles_kind() {
-  static const ElementKind kind{
-      "candles", "candles with noise-morphed flames, glows and wax bodies (Ogawa et al.)",
-      parse_kind};
-  return kind;
 }
 
 }  // namespace candela

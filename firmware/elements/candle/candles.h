@@ -1,7 +1,9 @@
 // The "candles" scene element: a group of candles, each a CandleRig with a
 // wax body, a morphed flame still and a glow, all drawn instanced (one draw
 // call per kind of thing, however many candles). Glows go first, then
-// bodies, then flames, as the candle paper orders them.
+// bodies, then flames, as the candle paper orders them. candles_spec.cpp
+// reads the keys below; candle_body_mesh.cpp makes the wax body's mesh;
+// candles.cpp stages the instances (prepare) and draws them.
 //
 //   [[element]]
 //   kind = "candles"

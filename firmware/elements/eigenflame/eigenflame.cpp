@@ -17,6 +17,7 @@
 #include "scene/params.h"
 #include "story/story_plan.h"
 #include "story/story_player.h"
+#include "wind/lean.h"
 #include "wind/wind_field.h"
 
 namespace candela {
@@ -150,8 +151,7 @@ class EigenFlame final : public Element {
       if (s.driver == EigenDriver::kArp)
         LOG_WARN("eigenflame: %s has no Learning Flames part; playing its motion graph instead",
                  model_->source.c_str());
-      GraphView g{m.graph.offsets, m.graph.successors, m.graph.cost};
-      GraphWalker walker(g, m.weights, m.components(), model_->lean, s.walk, seed);
+      GraphWalker walker(m.graph, m.weights, m.components(), model_->lean, s.walk, seed);
       player_ = std::make_unique<GraphPlayer>(std::move(walker), m.weights, m.components(),
                                               Fixed::from_ratio(1, 2));
       renderer_ = std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen),
@@ -174,9 +174,8 @@ class EigenFlame final : public Element {
     // The wind this flame feels sets the lean it should show (first-order lag).
     WindSample w{};
     if (step.wind) w = step.wind->sample(position_);
-    const Fixed target = clamp(w.x * s_.wind_lean, -s_.max_lean, s_.max_lean);
-    const Fixed k = std::min(Fixed::from_int(1), step.dt * s_.lean_response);
-    lean_ += (target - lean_) * k;
+    const Fixed k = lag_gain(step.dt, s_.lean_response);
+    lean_ = lean_toward(lean_, w.x, s_.wind_lean, s_.max_lean, k);
     wind_x_ += (w.x - wind_x_) * k;  // the wind the flame has caught up with (arp bending)
     time_ = step.time;
     const Fixed per_step = fps_ * step.dt;

@@ -14,8 +14,9 @@ Fixed lean_match(Fixed lean, Fixed target, Fixed tolerance) {
 }
 }  // namespace
 
-GraphWalker::GraphWalker(GraphView graph, std::span<const float> weights, int stride,
-                         std::vector<Fixed> lean, const WalkSettings& settings, uint64_t seed)
+GraphWalker::GraphWalker(const model::MotionGraph& graph, std::span<const float> weights,
+                         int stride, std::vector<Fixed> lean, const WalkSettings& settings,
+                         uint64_t seed)
     : graph_(graph),
       weights_(weights),
       stride_(stride),
@@ -23,7 +24,7 @@ GraphWalker::GraphWalker(GraphView graph, std::span<const float> weights, int st
       s_(settings),
       rng_(seed, 0x6e61),
       guard_(settings.max_stretch, settings.window) {
-  const int f = graph_.frames();
+  const int f = frames();
   lean_.resize(static_cast<size_t>(f));
   if (s_.lean_tolerance.raw <= 0) s_.lean_tolerance = Fixed::from_raw(1);
   // Jump preference: cheaper (closer) jumps are likelier; 1 / (1 + cost / median).
@@ -85,7 +86,7 @@ float GraphWalker::distance2(int32_t a, int32_t b) const {
 int32_t GraphWalker::bridge(int32_t toward, Fixed target, bool steer_only) {
   // Among seeded samples (some from the wind's lean bin, the rest anywhere),
   // the allowed frame nearest to `toward`, penalised for leaning wrong.
-  const uint32_t f = static_cast<uint32_t>(graph_.frames());
+  const uint32_t f = static_cast<uint32_t>(frames());
   int32_t best = -1;
   float best_score = 0;
   for (int i = 0; i < kBridgeSamples; ++i) {
@@ -150,7 +151,7 @@ int32_t GraphWalker::step(Fixed target) {
     // Every successor would replay a stretch: leave for a frame that does not.
     ++refusals_;
     next = bridge(graph_.successors[begin], target, false);
-    const int32_t f = graph_.frames();
+    const int32_t f = frames();
     for (int32_t k = 0, start = static_cast<int32_t>(rng_.below(static_cast<uint32_t>(f)));
          k < f && next < 0; ++k)
       if (guard_.allows((start + k) % f)) next = (start + k) % f;

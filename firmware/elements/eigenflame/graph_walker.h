@@ -29,13 +29,6 @@
 
 namespace candela {
 
-struct GraphView {
-  std::span<const int32_t> offsets;     // F + 1
-  std::span<const int32_t> successors;  // CSR
-  std::span<const float> cost;          // per successor
-  int frames() const { return static_cast<int>(offsets.size()) - 1; }
-};
-
 struct WalkSettings {
   int max_stretch = 45;                              // L, frames
   int window = 1800;                                 // W, frames
@@ -52,8 +45,9 @@ class GraphWalker {
   // lean: one per frame (image widths, + = right). Label hints may be folded
   // into it by the caller. Allocates here only.
   // weights: F x stride floats (the model's per-frame weights).
-  GraphWalker(GraphView graph, std::span<const float> weights, int stride, std::vector<Fixed> lean,
-              const WalkSettings& settings, uint64_t seed);
+  // graph: the model's own (model/flame_model.h; its spans outlive the walker).
+  GraphWalker(const model::MotionGraph& graph, std::span<const float> weights, int stride,
+              std::vector<Fixed> lean, const WalkSettings& settings, uint64_t seed);
 
   // Chooses and returns the next frame. target_lean: where the wind wants the flame.
   int32_t step(Fixed target_lean);
@@ -64,6 +58,7 @@ class GraphWalker {
   Fixed lean(int32_t frame) const { return lean_[static_cast<size_t>(frame)]; }
 
  private:
+  int frames() const { return static_cast<int>(graph_.offsets.size()) - 1; }
   int bin_of(Fixed lean) const;
   int32_t steer_candidate(Fixed target);
   int32_t bridge(int32_t toward, Fixed target, bool steer_only);
@@ -73,7 +68,7 @@ class GraphWalker {
   static constexpr int kBridgeComponents = 16;
   static constexpr int kBridgeSamples = 32;
 
-  GraphView graph_;
+  model::MotionGraph graph_;
   std::span<const float> weights_;
   int stride_;
   std::vector<Fixed> lean_;

@@ -2,14 +2,14 @@
 
 #include <algorithm>
 
+#include "core/random.h"
+
 namespace candela {
 namespace {
 uint64_t mix(uint64_t h, uint64_t v) {
   // SplitMix64-style finaliser over a running state: cheap and well spread.
-  h ^= v + 0x9E3779B97F4A7C15ULL + (h << 6) + (h >> 2);
-  h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  h = (h ^ (h >> 27)) * 0x94D049BB133111EBULL;
-  return h ^ (h >> 31);
+  h ^= v + kSplitMix64Gamma + (h << 6) + (h >> 2);
+  return splitmix64_mix(h);
 }
 }  // namespace
 

@@ -18,6 +18,7 @@
 #include "gl/render_target.h"
 #include "gl/texture.h"
 #include "scene/params.h"
+#include "wind/lean.h"
 #include "wind/wind_field.h"
 
 namespace candela {
@@ -170,11 +171,9 @@ class PerlinFire final : public Element {
     // Wind: the tip leans with the wind (first-order lag) and the turbulence drifts.
     WindSample w{};
     if (step.wind) w = step.wind->sample(position_);
-    const Fixed target_x = clamp(w.x * s_.wind_lean, -s_.max_lean, s_.max_lean);
-    const Fixed target_z = clamp(w.z * s_.wind_lean, -s_.max_lean, s_.max_lean);
-    const Fixed k = std::min(Fixed::from_int(1), step.dt * s_.lean_response);
-    lean_x_ += (target_x - lean_x_) * k;
-    lean_z_ += (target_z - lean_z_) * k;
+    const Fixed k = lag_gain(step.dt, s_.lean_response);
+    lean_x_ = lean_toward(lean_x_, w.x, s_.wind_lean, s_.max_lean, k);
+    lean_z_ = lean_toward(lean_z_, w.z, s_.wind_lean, s_.max_lean, k);
     const Fixed lattice_per_height = Fixed::from_double(s_.frequency);
     const int32_t wrap = static_cast<int32_t>(period_) * Fixed::kOne;
     drift_x_.raw = (drift_x_.raw + (w.x * s_.wind_drift * lattice_per_height * step.dt).raw) % wrap;

@@ -1,0 +1,25 @@
+# cmake -DDIR=<folder> -DGLOBS=<a|b> -DLISTED=<x|y> [-DSUFFIX=/CMakeLists.txt] -P listed_whole.cmake
+# The build names its areas and data files one by one (no globs at configure
+# time); this fails when a file on disk is missing from its list, or a listed
+# one is gone, so nothing new is silently left out of the build.
+string(REPLACE "|" ";" globs "${GLOBS}")
+string(REPLACE "|" ";" listed "${LISTED}")
+set(found "")
+foreach(g ${globs})
+  file(GLOB matches RELATIVE ${DIR} ${DIR}/${g})
+  foreach(m ${matches})
+    if(SUFFIX)
+      string(REGEX REPLACE "${SUFFIX}$" "" m "${m}")
+    endif()
+    list(APPEND found ${m})
+  endforeach()
+endforeach()
+set(missing ${found})
+list(REMOVE_ITEM missing ${listed})
+set(gone ${listed})
+list(REMOVE_ITEM gone ${found})
+if(missing OR gone)
+  message(FATAL_ERROR "${DIR}: not in the build's list: [${missing}]; listed but not there: [${gone}]")
+endif()
+list(LENGTH found n)
+message("${DIR}: all ${n} listed")
