@@ -4,11 +4,16 @@
 // FlameModel::from) stops the build instead of being written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
+#include <vector>
 
+#include "model/colour_ramp.h"
 #include "model/flame_model.h"
 #include "model_build.h"
+#include "render.h"
 
 namespace ct = candela::tools;
 namespace cm = candela::model;
@@ -102,4 +107,30 @@ TEST(BuildLimits, AModelTheRuntimeWouldRefuseIsNotHandedBack) {
   EXPECT_EQ(loaded.frames(), 40);
   EXPECT_EQ(loaded.components(), 4);
   EXPECT_DOUBLE_EQ(loaded.clips[0].fps, 30);
+}
+
+// The tools colour a frame as the kiosk does (story --out, render-weights):
+// every gray through the runtime's own HLS ramp, with hue_top when asked.
+TEST(ToolColour, TheToolsColourEveryGrayAsTheRuntimesRamp) {
+  std::vector<float> gray(256);
+  for (int i = 0; i < 256; ++i) gray[static_cast<size_t>(i)] = static_cast<float>(i);
+  for (const float hue_top : {std::numeric_limits<float>::quiet_NaN(), 56.0f}) {
+    const candela::Image img =
+        candela::tools::colourise(gray.data(), 256, 1, 16.0f, 0.95f, 0.0f, 0.0f, 12.0f, hue_top);
+    const auto ramp = candela::hls_ramp(16.0f, 0.95f, 12.0f, hue_top);
+    for (size_t i = 0; i < 256; ++i)
+      for (size_t c = 0; c < 3; ++c)
+        ASSERT_EQ(img.pixels[3 * i + c], ramp[4 * i + c]) << "gray " << i << " channel " << c;
+  }
+  // hue_top turns the bright body yellow (blue falls away from green; one hue
+  // goes pinkish white there) and keeps the dim edge's deep orange.
+  const candela::Image one =
+      candela::tools::colourise(gray.data(), 256, 1, 16.0f, 0.95f, 0.0f, 0.0f, 0.0f);
+  const candela::Image two =
+      candela::tools::colourise(gray.data(), 256, 1, 16.0f, 0.95f, 0.0f, 0.0f, 0.0f, 56.0f);
+  const auto green_over_blue = [](const candela::Image& im, size_t i) {
+    return im.pixels[3 * i + 1] - im.pixels[3 * i + 2];
+  };
+  for (size_t i : {200u, 230u}) EXPECT_GT(green_over_blue(two, i), green_over_blue(one, i) + 30);
+  for (size_t c = 0; c < 3; ++c) EXPECT_EQ(two.pixels[3 * 40 + c], one.pixels[3 * 40 + c]);
 }

@@ -3,17 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-namespace candela::tools {
+#include "model/colour_ramp.h"
 
-namespace {
-float hls_channel(float m1, float m2, float h) {
-  h = h - std::floor(h);
-  if (h < 1.0f / 6) return m1 + (m2 - m1) * 6 * h;
-  if (h < 0.5f) return m2;
-  if (h < 2.0f / 3) return m1 + (m2 - m1) * (2.0f / 3 - h) * 6;
-  return m1;
-}
-}  // namespace
+namespace candela::tools {
 
 Image gray_image(const float* gray, int width, int height) {
   Image img;
@@ -27,19 +19,15 @@ Image gray_image(const float* gray, int width, int height) {
 }
 
 Image colourise(const float* gray, int width, int height, float hue_deg, float saturation,
-                float glow_radius, float glow_strength, float black_level) {
+                float glow_radius, float glow_strength, float black_level, float hue_top_deg) {
   const size_t n = static_cast<size_t>(width) * height;
   std::vector<float> rgb(3 * n);
-  const float h = hue_deg / 360.0f;
+  // The runtime's own ramp (model/colour_ramp.h), entry by rounded gray, as
+  // the renderer's 8-bit target and ramp texture have it.
+  const auto ramp = hls_ramp(hue_deg, saturation, black_level, hue_top_deg);
   for (size_t p = 0; p < n; ++p) {
-    const float v =
-        std::max(0.0f, gray[p] - black_level) / (255.0f - std::min(black_level, 254.0f));
-    const float l = std::min(v, 1.0f);  // display-encoded gray is the lightness
-    const float m2 = l <= 0.5f ? l * (1 + saturation) : l + saturation - l * saturation;
-    const float m1 = 2 * l - m2;
-    rgb[3 * p] = hls_channel(m1, m2, h + 1.0f / 3);
-    rgb[3 * p + 1] = hls_channel(m1, m2, h);
-    rgb[3 * p + 2] = hls_channel(m1, m2, h - 1.0f / 3);
+    const auto i = static_cast<size_t>(std::lround(std::clamp(gray[p], 0.0f, 255.0f)));
+    for (size_t c = 0; c < 3; ++c) rgb[3 * p + c] = ramp[4 * i + c] * (1.0f / 255.0f);
   }
   if (glow_strength > 0 && glow_radius > 0) {
     std::vector<float> glow = rgb;

@@ -1,8 +1,9 @@
-// Pictures made by the tools: a gray flame coloured in HLS (gray as
-// lightness, chosen hue and saturation) with a glow, and the report plots.
+// Pictures made by the tools: a gray flame coloured as the runtime colours it
+// (the HLS ramp of model/colour_ramp.h) with a glow, and the report plots.
 #pragma once
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -11,10 +12,12 @@
 namespace candela::tools {
 
 // gray: display-encoded intensity 0..255, as datasets store it (values outside
-// are clamped); values up to black_level become black and the rest are
-// stretched back over 0..255, as the runtime's ramp does. Returns RGB.
+// are clamped), coloured through the runtime's HLS ramp (hls_ramp: luma kept,
+// values up to black_level black, the hue moving to hue_top_deg as the gray
+// nears white; NaN: one hue), then the glow added. Returns RGB.
 Image colourise(const float* gray, int width, int height, float hue_deg, float saturation,
-                float glow_radius, float glow_strength, float black_level = 0);
+                float glow_radius, float glow_strength, float black_level = 0,
+                float hue_top_deg = std::numeric_limits<float>::quiet_NaN());
 // Display-encoded 0..255 to an 8-bit gray image.
 Image gray_image(const float* gray, int width, int height);
 
