@@ -5,6 +5,7 @@
 // broken model shows its error in the window.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -432,6 +433,164 @@ TEST(Studio, AStoryPlaysItsPlannedFrames) {
   saved << in.rdbuf();
   EXPECT_NE(saved.str().find("story = \"builtin:fire-tour\"\n"), std::string::npos) << saved.str();
   EXPECT_EQ(saved.str().find("\nmodel = "), std::string::npos) << saved.str();
+}
+
+// ---------------------------------------------------------------------------
+// Weight edits saved as the element's keys (weight_offsets, detail_scale) and
+// played by `candela` headless.
+
+// A story that holds one stretch of the fire (frames 40-47): at speed 0.05 the
+// scene shows its first frame for the first 30 animation steps, the frame the
+// paused studio shows at timeline frame 0.
+std::string still_story() {
+  const std::string path = work("still.story.toml");
+  std::ofstream(path) << "model = \"builtin:fire\"\nseed = 3\nloop = true\n[[segment]]\n"
+                         "clip = \"fire-calm\"\nfrom = 40\nto = 48\n";
+  return path;
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The scene's text without the lines that start with `key = `.
+std::string without_key(std::string text, const std::string& key) {
+  for (size_t at; (at = text.find("\n" + key + " = ")) != std::string::npos;)
+    text.erase(at + 1, text.find('\n', at + 1) - at);
+  return text;
+}
+
+constexpr int kSceneW = 640, kSceneH = 480;
+
+// Renders a scene headless (its second frame) and returns it.
+candela::Image render_scene(const std::string& scene, const std::string& name) {
+  const std::string dir = work(name + ".frames");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const int rc = run(std::string(CANDELA_BIN) + " --display headless --scene " + scene +
+                     " --size " + std::to_string(kSceneW) + "x" + std::to_string(kSceneH) +
+                     " --frames 2 --mute --out " + dir);
+  EXPECT_EQ(rc, 0) << log_text();
+  return candela::read_png(dir + "/frame_000001.png", 3);
+}
+
+// Where the studio's saved scene draws the model's image (x y w h, pixels of
+// a kSceneW x kSceneH frame): its camera (position [0, 0.32, 1.7], target
+// [0, 0.3, 0], fov 40) looking at the upright billboard at the origin, 0.62 high.
+std::vector<double> scene_image_rect(double aspect) {
+  const double cx = 0, cy = 0.32, cz = 1.7, tx = 0, ty = 0.3, tz = 0, h = 0.62;
+  double fx = tx - cx, fy = ty - cy, fz = tz - cz;
+  const double fl = std::sqrt(fx * fx + fy * fy + fz * fz);
+  fx /= fl, fy /= fl, fz /= fl;
+  // right = f x up (0, 1, 0); u = right x f
+  double rx = -fz, ry = 0, rz = fx;
+  const double rl = std::sqrt(rx * rx + rz * rz);
+  rx /= rl, rz /= rl;
+  const double ux = ry * fz - rz * fy, uy = rz * fx - rx * fz, uz = rx * fy - ry * fx;
+  const double t = std::tan(20.0 * M_PI / 180.0), a = static_cast<double>(kSceneW) / kSceneH;
+  auto project = [&](double x, double y) {
+    const double dx = x - cx, dy = y - cy, dz = -cz;
+    const double xc = dx * rx + dy * ry + dz * rz, yc = dx * ux + dy * uy + dz * uz,
+                 zc = dx * fx + dy * fy + dz * fz;
+    return std::pair{(xc / (zc * t * a) + 1) / 2 * kSceneW, (1 - yc / (zc * t)) / 2 * kSceneH};
+  };
+  const auto [x0, y0] = project(-aspect * h / 2, h);
+  const auto [x1, y1] = project(aspect * h / 2, 0);
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+// Mean |horizontal + vertical gray steps|: how much fine detail an image holds.
+double detail(const std::vector<double>& img, int w, int h) {
+  double s = 0;
+  for (int y = 0; y + 1 < h; ++y)
+    for (int x = 0; x + 1 < w; ++x) {
+      const double v = img[static_cast<size_t>(y) * w + x];
+      s += std::abs(img[static_cast<size_t>(y) * w + x + 1] - v) +
+           std::abs(img[static_cast<size_t>(y + 1) * w + x] - v);
+    }
+  return s / ((w - 1.0) * (h - 1.0));
+}
+
+struct EditComparison {
+  double studio_change, scene_change, change_correlation, image_correlation;
+  double studio_detail[2], scene_detail[2];  // before, after the edit
+};
+
+// The studio (paused on the still story) before and after `edit`, saved as a
+// scene; the scene rendered headless with and without its weight keys; the
+// change each shows, on the model's pixel grid.
+EditComparison compare_edit(const std::string& name, const std::string& edit,
+                            std::string* saved = nullptr) {
+  const std::string scene = work(name + ".toml");
+  fs::remove(scene);
+  EditComparison r{};
+  EXPECT_EQ(
+      studio("builtin:fire " + still_story(), name,
+             "pause\nframe 0\nspeed 0.05\nwait 2\ndump " + work(name + "0.txt") + "\nscreenshot " +
+                 work(name + "0.png") + "\n" + edit + "wait 2\ndump " + work(name + "1.txt") +
+                 "\nscreenshot " + work(name + "1.png") + "\nsave-scene " + scene + "\nquit\n"),
+      0)
+      << log_text();
+  EXPECT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + scene), 0) << log_text();
+  const std::string text = file_text(scene);
+  if (saved) *saved = text;
+  const std::string plain = work(name + "-plain.toml");
+  std::ofstream(plain) << without_key(without_key(text, "weight_offsets"), "detail_scale");
+
+  const auto d1 = read_dump(work(name + "1.txt"));
+  const auto rect = numbers(d1.at("flame_image"));
+  const int mw = 64, mh = static_cast<int>(std::lround(64 * rect[3] / rect[2]));
+  const auto s0 = region(candela::read_png(work(name + "0.png"), 3), rect, mw, mh);
+  const auto s1 = region(candela::read_png(work(name + "1.png"), 3), rect, mw, mh);
+  const auto srect = scene_image_rect(rect[2] / rect[3]);
+  const auto f0 = region(render_scene(plain, name + "-plain"), srect, mw, mh);
+  const auto f1 = region(render_scene(scene, name), srect, mw, mh);
+  const auto ds = minus(s1, s0), df = minus(f1, f0);
+  r.studio_change = mean_abs(ds);
+  r.scene_change = mean_abs(df);
+  r.change_correlation = correlation(ds, df);
+  r.image_correlation = correlation(s1, f1);
+  r.studio_detail[0] = detail(s0, mw, mh), r.studio_detail[1] = detail(s1, mw, mh);
+  r.scene_detail[0] = detail(f0, mw, mh), r.scene_detail[1] = detail(f1, mw, mh);
+  std::printf(
+      "%s: studio change %.2f, scene change %.2f (mean |luma| on a %dx%d grid), change "
+      "correlation %.3f, edited flames' correlation %.3f; detail studio %.2f -> %.2f, scene "
+      "%.2f -> %.2f\n",
+      name.c_str(), r.studio_change, r.scene_change, mw, mh, r.change_correlation,
+      r.image_correlation, r.studio_detail[0], r.studio_detail[1], r.scene_detail[0],
+      r.scene_detail[1]);
+  return r;
+}
+
+TEST(Studio, WeightEditsAreSavedAsKeysAndTheScenePlaysThem) {
+  std::string saved;
+  const auto r = compare_edit("wkeys", "set weight 1 -2.0\nset weight 4 2.5\n", &saved);
+  EXPECT_NE(saved.find("\nweight_offsets = [0.0, -2.0, 0.0, 0.0, 2.5]\n"), std::string::npos)
+      << saved;
+  EXPECT_EQ(saved.find("detail_scale"), std::string::npos) << "unchanged: not written";
+  EXPECT_EQ(saved.find("# studio weight edits"), std::string::npos) << "no longer a comment";
+  EXPECT_GT(r.studio_change, 2.0) << "the edit is visible";
+  EXPECT_GT(r.scene_change, 2.0) << "and the scene plays it";
+  EXPECT_GT(r.change_correlation, 0.8) << "where and as the studio showed it";
+  EXPECT_GT(r.scene_change / r.studio_change, 0.6);
+  EXPECT_LT(r.scene_change / r.studio_change, 1.6);
+  EXPECT_GT(r.image_correlation, 0.9) << "the edited flame is the studio's";
+}
+
+// The fire has 256 components: detail_scale = 0 drops the 206 from 50 on.
+TEST(Studio, DetailScaleOnTheFireIsSavedAndPlayed) {
+  std::string saved;
+  const auto r = compare_edit("wdetail", "set detail 0\n", &saved);
+  EXPECT_NE(saved.find("\ndetail_scale = 0.0\n"), std::string::npos) << saved;
+  EXPECT_EQ(saved.find("weight_offsets"), std::string::npos) << "no offsets: not written";
+  EXPECT_LT(r.studio_detail[1], 0.9 * r.studio_detail[0]) << "a smoother flame in the studio";
+  EXPECT_LT(r.scene_detail[1], 0.9 * r.scene_detail[0]) << "and in the scene";
+  EXPECT_GT(r.change_correlation, 0.7) << "the same detail removed";
+  EXPECT_GT(r.scene_change / r.studio_change, 0.5);
+  EXPECT_LT(r.scene_change / r.studio_change, 2.0);
 }
 
 }  // namespace

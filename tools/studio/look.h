@@ -5,6 +5,8 @@
 #include <array>
 #include <vector>
 
+#include "elements/eigenflame/weight_edits.h"
+
 namespace candela::studio {
 
 struct Look {
@@ -22,13 +24,9 @@ struct Look {
 
 // The weight edits: offsets of the first kShapeWeights weights in standard
 // deviations of that weight over the model's frames, and one scale of all the
-// detail weights beyond them.
-struct WeightEdits {
-  static constexpr int kShapeWeights = 50;
-  std::vector<float> offset_sigma = std::vector<float>(kShapeWeights, 0.0f);
-  float detail_scale = 1.0f;  // 0..4
-  bool operator==(const WeightEdits&) const = default;
-};
+// detail weights beyond them: the eigenflame element's `weight_offsets` and
+// `detail_scale`, applied by the same function (apply_weight_edits).
+using WeightEdits = candela::EigenWeightEdits;
 
 struct Edits {
   WeightEdits weights;

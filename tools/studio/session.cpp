@@ -1,6 +1,7 @@
 #include "session.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -37,10 +38,12 @@ std::string toml_string(const std::string& s) {
   return out + "\"";
 }
 
-std::string num(double v) {
+// The shortest text that reads back as the same float: the scene plays
+// exactly the value the studio showed.
+std::string num(float v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  std::string s = buf;
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  std::string s(buf, r.ptr);
   if (s.find_first_of(".e") == std::string::npos) s += ".0";
   return s;
 }
@@ -74,20 +77,9 @@ Session::Session(std::string model, std::string story)
       return;
     }
   }
-  // Each weight's spread over the model's frames: the sliders' unit.
-  const int e = m.components(), f = m.frames();
-  sigma_.assign(static_cast<size_t>(e), 0.0f);
-  for (int k = 0; k < e; ++k) {
-    double s = 0, s2 = 0;
-    for (int i = 0; i < f; ++i) {
-      const double w = m.weights_of(i)[static_cast<size_t>(k)];
-      s += w;
-      s2 += w * w;
-    }
-    const double mean = f > 0 ? s / f : 0;
-    sigma_[static_cast<size_t>(k)] =
-        static_cast<float>(std::sqrt(std::max(0.0, f > 0 ? s2 / f - mean * mean : 0.0)));
-  }
+  // Each weight's spread over the model's frames: the sliders' unit (the element's too).
+  sigma_ = model_->sigma;
+  const int e = m.components();
   base_.assign(static_cast<size_t>(e), 0.0f);
   shown_ = base_;
   edits_.look.hue = m.colour.hue;
@@ -167,10 +159,8 @@ void Session::update_shown() {
   for (int k = 0; k < e; ++k) {
     const size_t u = static_cast<size_t>(k);
     base_[u] = k < ne ? a[k] + (b[k] - a[k]) * t : 0.0f;
-    shown_[u] = k < WeightEdits::kShapeWeights
-                    ? base_[u] + edits_.weights.offset_sigma[u] * sigma_[u]
-                    : base_[u] * edits_.weights.detail_scale;
   }
+  apply_weight_edits(base_, sigma_, edits_.weights, shown_);
 }
 
 void Session::begin_edit(const Edits& before) {
@@ -181,12 +171,13 @@ void Session::begin_edit(const Edits& before) {
 
 void Session::set_offset(int k, float sigmas) {
   if (k < 0 || k >= shape_weights()) return;
-  edits_.weights.offset_sigma[static_cast<size_t>(k)] = std::clamp(sigmas, -5.0f, 5.0f);
+  edits_.weights.offset_sigma[static_cast<size_t>(k)] =
+      std::clamp(sigmas, -WeightEdits::kMaxOffset, WeightEdits::kMaxOffset);
   update_shown();
 }
 
 void Session::set_detail_scale(float s) {
-  edits_.weights.detail_scale = std::clamp(s, 0.0f, 4.0f);
+  edits_.weights.detail_scale = std::clamp(s, 0.0f, WeightEdits::kMaxDetailScale);
   update_shown();
 }
 
@@ -247,14 +238,18 @@ std::string Session::scene_text() const {
     }
     s += "transfer = \"" + stops + "\"  # used instead of hue and saturation\n";
   }
-  // The element has no keys for weight edits yet: keep them as a note.
-  std::string w;
+  // The weight edits (standard deviations of each weight; the sliders' values).
+  int last = -1;
   for (int k = 0; k < shape_weights(); ++k)
-    if (edits_.weights.offset_sigma[static_cast<size_t>(k)] != 0)
-      w += " " + std::to_string(k) + ":" + num(edits_.weights.offset_sigma[static_cast<size_t>(k)]);
-  if (!w.empty() || edits_.weights.detail_scale != 1)
-    s += "# studio weight edits (standard deviations; not played by the element yet):" + w +
-         " detail_scale:" + num(edits_.weights.detail_scale) + "\n";
+    if (edits_.weights.offset_sigma[static_cast<size_t>(k)] != 0) last = k;
+  if (last >= 0) {
+    s += "weight_offsets = [";
+    for (int k = 0; k <= last; ++k)
+      s += (k ? ", " : "") + num(edits_.weights.offset_sigma[static_cast<size_t>(k)]);
+    s += "]\n";
+  }
+  if (edits_.weights.detail_scale != 1)
+    s += "detail_scale = " + num(edits_.weights.detail_scale) + "\n";
   return s;
 }
 

@@ -71,6 +71,7 @@ std::shared_ptr<EigenModel> derive(std::shared_ptr<const model::FlameModel> m, s
                                                    : 0;
       for (int i = l.from; i < l.to; ++i) lean[static_cast<size_t>(i)] += bias;
     }
+  em->sigma = weight_sigmas(*m);
   em->lean.reserve(lean.size());
   for (double l : lean) em->lean.push_back(Fixed::from_double(l));
   em->model = std::move(m);
@@ -129,8 +130,9 @@ class EigenFlame final : public Element {
       const story::StoryPlan plan =
           story::plan_story(*story, m, story->has_seed ? story->seed : seed, true);
       story_ = std::make_unique<story::StoryPlayer>(plan, m.components(), Fixed::from_ratio(1, 2));
-      renderer_ = std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen),
-                                                  s.layout, e, look, story_->weights(), batch);
+      renderer_ =
+          std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen), s.layout,
+                                          e, look, edited(story_->weights()), batch);
     } else if (s.driver == EigenDriver::kArp && m.has_learning_flames) {
       const auto& L = m.flames;
       shape_ = std::make_unique<FlameShapeModel>(FlameShapeModel::from(m));
@@ -154,8 +156,9 @@ class EigenFlame final : public Element {
       GraphWalker walker(g, m.weights, m.components(), model_->lean, s.walk, seed);
       player_ = std::make_unique<GraphPlayer>(std::move(walker), m.weights, m.components(),
                                               Fixed::from_ratio(1, 2));
-      renderer_ = std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen),
-                                                  s.layout, e, look, player_->weights(), batch);
+      renderer_ =
+          std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen), s.layout,
+                                          e, look, edited(player_->weights()), batch);
     }
     if (s.embers.enabled) {
       embers_ = Program::from_library("floor_quad.vert", "eigenflame_embers.frag");
@@ -184,10 +187,12 @@ class EigenFlame final : public Element {
       story_->set_rate(per_step);
       story_->set_crossfade(s_.crossfade);
       story_->step();
+      edited(story_->weights());
     } else if (player_) {
       player_->set_rate(per_step);
       player_->set_crossfade(s_.crossfade);
       player_->step(lean_);
+      edited(player_->weights());
     } else if (arp_) {
       phase_ += per_step;
       while (phase_ >= Fixed::from_int(1)) {
@@ -230,6 +235,15 @@ class EigenFlame final : public Element {
   }
 
  private:
+  // The weights the renderer shows: the driver's own, or with the scene's
+  // weight edits applied (the studio's function) into edited_.
+  std::span<const float> edited(std::span<const float> base) {
+    if (s_.weights.identity()) return base;
+    edited_.resize(base.size());  // the same size every frame: no reallocation after the first
+    apply_weight_edits(base, model_->sigma, s_.weights, edited_);
+    return edited_;
+  }
+
   void draw_embers(const FrameContext& f) {
     embers_.use();
     glUniformMatrix4fv(ue_[0], 1, GL_FALSE, f.view_projection.m);
@@ -256,6 +270,7 @@ class EigenFlame final : public Element {
   std::unique_ptr<ArpProcess> arp_;
   std::unique_ptr<FlameShapeModel> shape_;
   std::array<float, ArpProcess::kMaxDim> prev_{}, next_{}, shown_{};
+  std::vector<float> edited_;
   std::unique_ptr<EigenRenderer> renderer_;
   Program embers_;
   VertexArray embers_vao_;
@@ -351,6 +366,18 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
   s.has_saturation = r.has("saturation");
   s.saturation = static_cast<float>(r.number("saturation", s.saturation, 0, 1));
   s.transfer = parse_transfer(r);
+  {
+    const auto offsets = r.numbers("weight_offsets", -EigenWeightEdits::kMaxOffset,
+                                   EigenWeightEdits::kMaxOffset, EigenWeightEdits::kShapeWeights);
+    for (size_t k = 0; k < offsets.size(); ++k)
+      s.weights.offset_sigma[k] = static_cast<float>(offsets[k]);
+    s.weights.detail_scale = static_cast<float>(
+        r.number("detail_scale", s.weights.detail_scale, 0, EigenWeightEdits::kMaxDetailScale));
+    if (s.driver == EigenDriver::kArp && !s.weights.identity())
+      r.fail(r.has("weight_offsets") ? "weight_offsets" : "detail_scale",
+             "expected no weight edits with driver = \"arp\" (its weights are the Learning "
+             "Flames model's own; graph and story drivers take them)");
+  }
   s.brightness = static_cast<float>(r.number("brightness", s.brightness, 0, 16));
   s.has_glow_radius = r.has("glow_radius");
   s.glow_radius = static_cast<float>(r.number("glow_radius", s.glow_radius, 0, 1));
