@@ -593,4 +593,50 @@ TEST(Studio, DetailScaleOnTheFireIsSavedAndPlayed) {
   EXPECT_LT(r.scene_change / r.studio_change, 2.0);
 }
 
+// The colour panel's "hue at top" (the element's hue_top): a higher top hue
+// turns the bright body yellower; saved as the key; undo takes it back.
+TEST(Studio, HueTopMakesTheBrightBodyYellowerAndIsSaved) {
+  const std::string scene = work("huetop.toml");
+  fs::remove(scene);
+  ASSERT_EQ(studio(kFire, "huetop",
+                   "pause\nframe 40\nset hue 20\nwait 2\ndump " + work("h0.txt") + "\nscreenshot " +
+                       work("h0.png") + "\nset hue_top 55\nwait 2\ndump " + work("h1.txt") +
+                       "\nscreenshot " + work("h1.png") + "\nsave-scene " + scene +
+                       "\nundo\nwait 2\ndump " + work("h2.txt") + "\nscreenshot " + work("h2.png") +
+                       "\nquit\n"),
+            0)
+      << log_text();
+  const auto rect = numbers(read_dump(work("h0.txt")).at("flame_image"));
+  const auto img0 = candela::read_png(work("h0.png"), 3),
+             img1 = candela::read_png(work("h1.png"), 3);
+  // The mean hue (HSV, degrees) where the flame is bright (luma over 100) and
+  // still coloured (not the white core): its body.
+  auto body = [&](const candela::Image& img) {
+    double sum = 0;
+    int n = 0;
+    for (int y = static_cast<int>(rect[1]); y < rect[1] + rect[3]; ++y)
+      for (int x = static_cast<int>(rect[0]); x < rect[0] + rect[2]; ++x) {
+        const double r = img.at(x, y, 0), g = img.at(x, y, 1), b = img.at(x, y, 2);
+        const double hi = std::max({r, g, b}), lo = std::min({r, g, b});
+        if (luma(img, x, y) <= 100 || hi - lo <= 20 || hi != r) continue;  // red-led hues only
+        sum += 60 * (g - b) / (hi - lo), ++n;
+      }
+    return n > 0 ? sum / n : -1;
+  };
+  const double before = body(img0), after = body(img1);
+  const double undone = body(candela::read_png(work("h2.png"), 3));
+  std::printf(
+      "mean hue of the bright body: hue_top = hue %.1f deg, hue_top 55 %.1f deg, "
+      "undone %.1f deg\n",
+      before, after, undone);
+  EXPECT_NEAR(before, 20, 3) << "the hue throughout";
+  EXPECT_GT(after, before + 8) << "a yellower body";
+  EXPECT_NEAR(undone, before, 0.1) << "undo takes it back";
+  EXPECT_EQ(read_dump(work("h1.txt")).at("hue_top"), "55");
+  EXPECT_EQ(read_dump(work("h2.txt")).at("hue_top"), "20") << "undone: the hue throughout";
+  ASSERT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + scene), 0) << log_text();
+  const std::string saved = file_text(scene);
+  EXPECT_NE(saved.find("\nhue = 20.0\nhue_top = 55.0\n"), std::string::npos) << saved;
+}
+
 }  // namespace

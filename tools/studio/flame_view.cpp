@@ -50,7 +50,8 @@ void FlameView::render(std::span<const float> weights, const Look& look, int w, 
       for (const auto& c : look.transfer) stops.push_back({c[0], c[1], c[2]});
       s.ramp = transfer_ramp(stops, m.colour.black_level);
     } else {
-      s.ramp = hls_ramp(look.hue, look.saturation, m.colour.black_level);
+      s.ramp = hls_ramp(look.hue, look.saturation, m.colour.black_level,
+                        look.has_hue_top ? look.hue_top : look.hue);
     }
     s.brightness = look.brightness;
     s.glow_radius = std::max(0.02f, look.glow_radius);  // as the element clamps the model's

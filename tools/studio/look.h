@@ -10,7 +10,11 @@
 namespace candela::studio {
 
 struct Look {
-  float hue = 28;             // degrees (HLS)
+  float hue = 28;  // degrees (HLS)
+  // The hue at full brightness (the element's `hue_top`; it moves there with
+  // the cube of the gray); until set, the hue throughout, as the element's default.
+  bool has_hue_top = false;
+  float hue_top = 28;         // degrees
   float saturation = 0.9f;    // 0..1
   float brightness = 1.0f;    // 0..16
   float glow_radius = 0.06f;  // fraction of the flame height, 0..1

@@ -241,6 +241,24 @@ void Panels::draw_controls(Session& s, ReportsView& reports, double frame_ms) {
     } else {
       changed |= ImGui::SliderFloat("hue", &look.hue, 0, 360, "%.0f deg");
       undo_point();
+      // The hue of the brightest gray: follows the hue until moved.
+      if (!look.has_hue_top) look.hue_top = look.hue;
+      if (look.has_hue_top) {  // room for "= hue" after the label, as wide as the other rows
+        const ImGuiStyle& st = ImGui::GetStyle();
+        ImGui::SetNextItemWidth(ImGui::CalcItemWidth() - ImGui::CalcTextSize("= hue").x -
+                                st.FramePadding.x * 2 - st.ItemSpacing.x);
+      }
+      if (ImGui::SliderFloat("hue at top", &look.hue_top, 0, 360, "%.0f deg"))
+        changed = look.has_hue_top = true;
+      undo_point();
+      if (look.has_hue_top) {
+        ImGui::SameLine();
+        if (ImGui::SmallButton("= hue")) {
+          s.begin_edit();
+          look.has_hue_top = false;
+          changed = true;
+        }
+      }
       changed |= ImGui::SliderFloat("saturation", &look.saturation, 0, 1);
       undo_point();
     }

@@ -50,11 +50,12 @@ std::string check(const std::vector<std::string>& w) {
       }
       return {};
     }
-    static const char* keys[] = {"detail",     "hue",         "saturation",
+    static const char* keys[] = {"detail",     "hue",         "hue_top",      "saturation",
                                  "brightness", "glow_radius", "glow_strength"};
     for (const char* k : keys)
       if (w.size() >= 2 && w[1] == k) return nums(2, 1);
-    return "expected set weight|detail|hue|saturation|brightness|glow_radius|glow_strength";
+    return "expected set weight|detail|hue|hue_top|saturation|brightness|glow_radius|"
+           "glow_strength";
   }
   if (c == "drag" || c == "click") {
     if (w.size() < 2 || w[1] != "pca") return "expected '" + c + " pca X Y'";
@@ -133,6 +134,7 @@ ScriptFrame Script::run_frame(Session& s, PcaView& pca) {
         Look l = s.edits().look;
         const float v = f(w[2]);
         if (w[1] == "hue") l.hue = v;
+        if (w[1] == "hue_top") l.hue_top = v, l.has_hue_top = true;
         if (w[1] == "saturation") l.saturation = v;
         if (w[1] == "brightness") l.brightness = v;
         if (w[1] == "glow_radius") l.glow_radius = v;

@@ -183,6 +183,8 @@ void Session::set_detail_scale(float s) {
 
 void Session::set_look(const Look& l) {
   edits_.look.hue = std::clamp(l.hue, 0.0f, 360.0f);
+  edits_.look.has_hue_top = l.has_hue_top;
+  edits_.look.hue_top = std::clamp(l.hue_top, 0.0f, 360.0f);
   edits_.look.saturation = std::clamp(l.saturation, 0.0f, 1.0f);
   edits_.look.brightness = std::clamp(l.brightness, 0.0f, 16.0f);
   edits_.look.glow_radius = std::clamp(l.glow_radius, 0.0f, 1.0f);
@@ -223,6 +225,7 @@ std::string Session::scene_text() const {
   s += "position = [0.0, 0.0, 0.0]\nheight = 0.62\n";
   s += "speed = " + num(std::clamp(speed, 0.05f, 8.0f)) + "\n";
   s += "hue = " + num(l.hue) + "\n";
+  if (l.has_hue_top) s += "hue_top = " + num(l.hue_top) + "\n";
   s += "saturation = " + num(l.saturation) + "\n";
   s += "brightness = " + num(l.brightness) + "\n";
   s += "glow_radius = " + num(l.glow_radius) + "\n";

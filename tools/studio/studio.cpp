@@ -133,9 +133,10 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
     out << "\nbase =";
     for (float v : s.base()) std::snprintf(buf, sizeof buf, " %.9g", v), out << buf;
     const Look& l = s.edits().look;
-    out << "\nhue = " << l.hue << "\nsaturation = " << l.saturation
-        << "\nbrightness = " << l.brightness << "\nglow_radius = " << l.glow_radius
-        << "\nglow_strength = " << l.glow_strength << "\ntransfer_stops = " << l.transfer.size()
+    out << "\nhue = " << l.hue << "\nhue_top = " << (l.has_hue_top ? l.hue_top : l.hue)
+        << "\nsaturation = " << l.saturation << "\nbrightness = " << l.brightness
+        << "\nglow_radius = " << l.glow_radius << "\nglow_strength = " << l.glow_strength
+        << "\ntransfer_stops = " << l.transfer.size()
         << "\ndetail_scale = " << s.edits().weights.detail_scale
         << "\nundo_depth = " << s.undo_depth() << "\n";
   }
