@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <string>
@@ -519,26 +520,31 @@ struct EditComparison {
   double studio_detail[2], scene_detail[2];  // before, after the edit
 };
 
-// The studio (paused on the still story) before and after `edit`, saved as a
-// scene; the scene rendered headless with and without its weight keys; the
-// change each shows, on the model's pixel grid.
-EditComparison compare_edit(const std::string& name, const std::string& edit,
-                            std::string* saved = nullptr) {
+// The studio (paused on the still story, after `setup`) before and after
+// `edit`, saved as a scene; the scene rendered headless as saved and as
+// `unedit` makes it (default: without its weight keys); the change each
+// shows, on the model's pixel grid.
+EditComparison compare_edit(
+    const std::string& name, const std::string& edit, std::string* saved = nullptr,
+    const std::string& setup = "",
+    const std::function<std::string(const std::string&)>& unedit = [](const std::string& t) {
+      return without_key(without_key(t, "weight_offsets"), "detail_scale");
+    }) {
   const std::string scene = work(name + ".toml");
   fs::remove(scene);
   EditComparison r{};
-  EXPECT_EQ(
-      studio("builtin:fire " + still_story(), name,
-             "pause\nframe 0\nspeed 0.05\nwait 2\ndump " + work(name + "0.txt") + "\nscreenshot " +
-                 work(name + "0.png") + "\n" + edit + "wait 2\ndump " + work(name + "1.txt") +
-                 "\nscreenshot " + work(name + "1.png") + "\nsave-scene " + scene + "\nquit\n"),
-      0)
+  EXPECT_EQ(studio("builtin:fire " + still_story(), name,
+                   "pause\nframe 0\nspeed 0.05\n" + setup + "wait 2\ndump " + work(name + "0.txt") +
+                       "\nscreenshot " + work(name + "0.png") + "\n" + edit + "wait 2\ndump " +
+                       work(name + "1.txt") + "\nscreenshot " + work(name + "1.png") +
+                       "\nsave-scene " + scene + "\nquit\n"),
+            0)
       << log_text();
   EXPECT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + scene), 0) << log_text();
   const std::string text = file_text(scene);
   if (saved) *saved = text;
   const std::string plain = work(name + "-plain.toml");
-  std::ofstream(plain) << without_key(without_key(text, "weight_offsets"), "detail_scale");
+  std::ofstream(plain) << unedit(text);
 
   const auto d1 = read_dump(work(name + "1.txt"));
   const auto rect = numbers(d1.at("flame_image"));
@@ -637,6 +643,73 @@ TEST(Studio, HueTopMakesTheBrightBodyYellowerAndIsSaved) {
   ASSERT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + scene), 0) << log_text();
   const std::string saved = file_text(scene);
   EXPECT_NE(saved.find("\nhue = 20.0\nhue_top = 55.0\n"), std::string::npos) << saved;
+}
+
+// Transfer-function stops moved to chosen places: the flame changes in the
+// studio, the scene keeps the places ("#rrggbb@PLACE") and plays the same
+// change; a stop stays between its neighbours; undo takes back one move at a time.
+TEST(Studio, TransferStopsAtChosenPlacesAreSavedAndPlayed) {
+  std::string saved;
+  const std::string stops = "#000000 #a00000 #ff2000 #ffd0d0";
+  const auto r = compare_edit("tplace", "set stop 1 0.08\nset stop 2 0.35\n", &saved,
+                              "set transfer " + stops + "\n", [&](const std::string& t) {
+                                const size_t at = t.find("\ntransfer = ");
+                                return t.substr(0, at) + "\ntransfer = \"" + stops + "\"\n" +
+                                       t.substr(t.find('\n', at + 1) + 1);
+                              });
+  EXPECT_NE(saved.find("\ntransfer = \"#000000@0.0 #a00000@0.08 #ff2000@0.35 #ffd0d0@1.0\""),
+            std::string::npos)
+      << saved;
+  EXPECT_GT(r.studio_change, 3.0) << "stops lower on the ramp: a brighter flame";
+  EXPECT_GT(r.change_correlation, 0.9) << "the scene plays the same ramp";
+  EXPECT_GT(r.scene_change / r.studio_change, 0.7);
+  EXPECT_LT(r.scene_change / r.studio_change, 1.4);
+  EXPECT_EQ(read_dump(work("tplace1.txt")).at("transfer_at"), "0 0.08 0.35 1");
+  ASSERT_EQ(studio("builtin:fire", "tundo",
+                   "set transfer " + stops + "\nset stop 1 0.08\nset stop 1 0.9\ndump " +
+                       work("tu0.txt") + "\nundo\ndump " + work("tu1.txt") + "\nundo\ndump " +
+                       work("tu2.txt") + "\nquit\n"),
+            0)
+      << log_text();
+  EXPECT_EQ(read_dump(work("tu0.txt")).at("transfer_at"), "0 0.666667 0.666667 1")
+      << "stop 1 stops at stop 2";
+  EXPECT_EQ(read_dump(work("tu1.txt")).at("transfer_at"), "0 0.08 0.666667 1");
+  EXPECT_EQ(read_dump(work("tu2.txt")).at("transfer_at"), "0 0.333333 0.666667 1");
+}
+
+// A stop's place handle dragged with real X input (press on it, move, release).
+TEST(Studio, DraggingAStopsPlaceHandleMovesIt) {
+  const std::string stops = "#000000 #a00000 #ff2000 #ffd0d0";
+  ASSERT_EQ(
+      studio("builtin:fire", "tdrag0",
+             "pause\nset transfer " + stops + "\nwait 2\ndump " + work("td0.txt") + "\nquit\n"),
+      0)
+      << log_text();
+  const auto row = numbers(read_dump(work("td0.txt")).at("transfer_places"));
+  ASSERT_EQ(row.size(), 4u);
+  ASSERT_GT(row[2], 100) << "the row of handles is shown";
+  auto at = [&](double place) {
+    return std::to_string(static_cast<int>(std::lround(row[0] + row[2] * place))) + " " +
+           std::to_string(static_cast<int>(std::lround(row[1] + row[3] / 2)));
+  };
+  // Stop 1 (at 1/3) dragged to 0.15, in steps, and let go; then stop 2 (at
+  // 2/3) dragged far left: it stops at stop 1.
+  std::string s = "pause\nset transfer " + stops + "\nwait 2\nx-move " + at(1.0 / 3) +
+                  "\nwait 1\nx-press " + at(1.0 / 3) + "\nwait 1\n";
+  for (double p : {0.28, 0.22, 0.15}) s += "x-move " + at(p) + "\nwait 1\n";
+  s += "x-release " + at(0.15) + "\nwait 1\ndump " + work("td1.txt") + "\nx-move " + at(2.0 / 3) +
+       "\nwait 1\nx-press " + at(2.0 / 3) + "\nwait 1\nx-move " + at(0.4) + "\nwait 1\nx-move " +
+       at(0.02) + "\nwait 1\nx-release " + at(0.02) + "\nwait 1\ndump " + work("td2.txt") +
+       "\nquit\n";
+  ASSERT_EQ(studio("builtin:fire", "tdrag", s), 0) << log_text();
+  const auto p1 = numbers(read_dump(work("td1.txt")).at("transfer_at"));
+  const auto p2 = numbers(read_dump(work("td2.txt")).at("transfer_at"));
+  ASSERT_EQ(p1.size(), 4u);
+  ASSERT_EQ(p2.size(), 4u);
+  EXPECT_NEAR(p1[1], 0.15, 1.0 / row[2] + 1e-3) << "stop 1 where it was let go";
+  EXPECT_NEAR(p1[2], 2.0 / 3, 1e-5) << "the others stay";
+  EXPECT_NEAR(p2[2], p1[1], 1e-6) << "stop 2 stops at stop 1";
+  EXPECT_EQ(read_dump(work("td2.txt")).at("undo_depth"), "3") << "set transfer and two drags";
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <vector>
 
 #include "elements/eigenflame/eigenflame.h"
 #include "model/flame_model.h"
@@ -32,26 +33,58 @@ PixelRect rect_of(ImVec2 pos, ImVec2 size) {
           static_cast<int>(size.y)};
 }
 
-// The transfer function: a ramp preview over its evenly spaced colour stops,
-// each stop a handle (click: a colour picker), stops added or removed at the end.
+// The transfer function: a ramp preview over its colour stops, a row of
+// place handles under it (drag one along the ramp: it stays between its
+// neighbours), each stop's colour a handle (click: a colour picker), stops
+// added or removed at the end (evenly spaced ones stay evenly spaced).
 template <typename UndoPoint>
-bool transfer_editor(Look& look, UndoPoint& undo_point, Session& s) {
+bool transfer_editor(Look& look, UndoPoint& undo_point, Session& s, PixelRect& places_row) {
   bool changed = false;
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const ImVec2 at = ImGui::GetCursorScreenPos();
-  const float w = ImGui::GetContentRegionAvail().x, h = 14;
+  const float w = ImGui::GetContentRegionAvail().x, h = 14, hw = 6, hh = 10;
   const size_t n = look.transfer.size();
+  if (look.transfer_at.size() != n) look.transfer_at = Look::even_places(n);
+  std::vector<float>& p = look.transfer_at;
   auto col = [](const std::array<float, 3>& c) {
     return ImGui::ColorConvertFloat4ToU32(ImVec4(c[0], c[1], c[2], 1));
   };
+  // Below the first stop the first colour, above the last the last.
+  dl->AddRectFilled(at, ImVec2(at.x + w * p[0], at.y + h), col(look.transfer[0]));
+  dl->AddRectFilled(ImVec2(at.x + w * p[n - 1], at.y), ImVec2(at.x + w, at.y + h),
+                    col(look.transfer[n - 1]));
   for (size_t i = 0; i + 1 < n; ++i) {
-    const float x0 = at.x + w * static_cast<float>(i) / static_cast<float>(n - 1);
-    const float x1 = at.x + w * static_cast<float>(i + 1) / static_cast<float>(n - 1);
-    dl->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + h), col(look.transfer[i]),
-                                col(look.transfer[i + 1]), col(look.transfer[i + 1]),
-                                col(look.transfer[i]));
+    const float x0 = at.x + w * p[i], x1 = at.x + w * p[i + 1];
+    if (x1 > x0)
+      dl->AddRectFilledMultiColor(ImVec2(x0, at.y), ImVec2(x1, at.y + h), col(look.transfer[i]),
+                                  col(look.transfer[i + 1]), col(look.transfer[i + 1]),
+                                  col(look.transfer[i]));
   }
   ImGui::Dummy(ImVec2(w, h));
+  const bool even = look.evenly_spaced();
+  // The place handles: a triangle under each stop's place.
+  const ImVec2 row = ImGui::GetCursorScreenPos();
+  places_row = rect_of(row, ImVec2(w, hh));
+  for (size_t i = 0; i < n; ++i) {
+    const float x = row.x + w * p[i];
+    ImGui::SetCursorScreenPos(ImVec2(x - hw, row.y));
+    ImGui::PushID(static_cast<int>(i));
+    ImGui::InvisibleButton("place", ImVec2(2 * hw, hh));
+    undo_point();
+    if (ImGui::IsItemActive()) {
+      const float lo = i > 0 ? p[i - 1] : 0.0f, hi = i + 1 < n ? p[i + 1] : 1.0f;
+      const float v = std::clamp((ImGui::GetIO().MousePos.x - row.x) / w, lo, hi);
+      if (v != p[i]) p[i] = v, changed = true;
+    }
+    if (ImGui::IsItemHovered() || ImGui::IsItemActive())
+      ImGui::SetTooltip("stop %u at %.3f", static_cast<unsigned>(i), p[i]);
+    const bool lit = ImGui::IsItemHovered() || ImGui::IsItemActive();
+    dl->AddTriangleFilled(ImVec2(x, row.y), ImVec2(x - hw, row.y + hh), ImVec2(x + hw, row.y + hh),
+                          lit ? IM_COL32(255, 255, 255, 255) : IM_COL32(170, 170, 170, 255));
+    ImGui::PopID();
+  }
+  ImGui::SetCursorScreenPos(row);
+  ImGui::Dummy(ImVec2(w, hh));
   for (size_t i = 0; i < n; ++i) {
     char id[32];
     std::snprintf(id, sizeof id, "##stop%u", static_cast<unsigned>(i));
@@ -63,12 +96,28 @@ bool transfer_editor(Look& look, UndoPoint& undo_point, Session& s) {
   if (n < Look::kMaxStops && ImGui::SmallButton("+")) {
     s.begin_edit();
     look.transfer.push_back(look.transfer.back());
+    if (even) {
+      p = Look::even_places(n + 1);
+    } else {
+      p.push_back(1.0f);
+    }
     changed = true;
   }
   ImGui::SameLine();
   if (n > 2 && ImGui::SmallButton("-")) {
     s.begin_edit();
     look.transfer.pop_back();
+    if (even) {
+      p = Look::even_places(n - 1);
+    } else {
+      p.pop_back();
+    }
+    changed = true;
+  }
+  ImGui::SameLine();
+  if (!even && ImGui::SmallButton("even")) {
+    s.begin_edit();
+    p = Look::even_places(n);
     changed = true;
   }
   return changed;
@@ -192,6 +241,7 @@ void Panels::draw_error(const Session& s, const Layout& l) {
 void Panels::draw_controls(Session& s, ReportsView& reports, double frame_ms) {
   const model::FlameModel& m = *s.model().model;
   const Edits before = s.edits();  // what a widget's gesture undoes to
+  drawn_.transfer_places = {};
   auto undo_point = [&] {
     if (ImGui::IsItemActivated()) s.begin_edit(before);
   };
@@ -237,7 +287,7 @@ void Panels::draw_controls(Session& s, ReportsView& reports, double frame_ms) {
       changed = true;
     }
     if (look.transfer.size() >= 2) {
-      changed |= transfer_editor(look, undo_point, s);
+      changed |= transfer_editor(look, undo_point, s, drawn_.transfer_places);
     } else {
       changed |= ImGui::SliderFloat("hue", &look.hue, 0, 360, "%.0f deg");
       undo_point();

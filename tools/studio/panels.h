@@ -31,6 +31,9 @@ struct Layout {
 // Where things were drawn this frame (window pixels, top-left origin).
 struct DrawnRects {
   PixelRect flame_image, flame_view, pca;
+  // The transfer function's row of place handles: stop k's handle is centred
+  // at x + w * place(k), y + h / 2 (all 0 when the row is not shown).
+  PixelRect transfer_places;
 };
 
 class Panels {

@@ -38,15 +38,21 @@ std::string check(const std::vector<std::string>& w) {
   if (c == "wait" || c == "frame" || c == "speed") return nums(1, 1);
   if (c == "step") return w.size() == 1 ? "" : nums(1, 1);
   if (c == "set") {
-    if (w.size() >= 2 && w[1] == "weight") return nums(2, 2);
+    if (w.size() >= 2 && (w[1] == "weight" || w[1] == "stop")) return nums(2, 2);
     if (w.size() >= 2 && w[1] == "transfer") {
       if (w.size() == 3 && w[2] == "off") return {};
       if (w.size() < 4 || w.size() > 2 + 8)
-        return "expected set transfer off | 2 to 8 #rrggbb stops";
+        return "expected set transfer off | 2 to 8 #rrggbb[@PLACE] stops";
       for (size_t i = 2; i < w.size(); ++i) {
         unsigned r, g, b;
-        if (w[i].size() != 7 || std::sscanf(w[i].c_str(), "#%2x%2x%2x", &r, &g, &b) != 3)
-          return "expected a colour stop #rrggbb, got '" + w[i] + "'";
+        const size_t sep = w[i].find('@');
+        const std::string colour = w[i].substr(0, sep);
+        double place = 0;
+        if (colour.size() != 7 || std::sscanf(colour.c_str(), "#%2x%2x%2x", &r, &g, &b) != 3 ||
+            (sep != std::string::npos && !number(w[i].substr(sep + 1), place)))
+          return "expected a colour stop #rrggbb or #rrggbb@PLACE, got '" + w[i] + "'";
+        if ((sep != std::string::npos) != (w[2].find('@') != std::string::npos))
+          return "expected every stop placed (#rrggbb@PLACE) or none, got '" + w[i] + "'";
       }
       return {};
     }
@@ -128,6 +134,8 @@ ScriptFrame Script::run_frame(Session& s, PcaView& pca) {
       s.begin_edit();
       if (w[1] == "weight") {
         s.set_offset(static_cast<int>(f(w[2])), f(w[3]));
+      } else if (w[1] == "stop") {
+        s.set_stop_place(static_cast<int>(f(w[2])), f(w[3]));
       } else if (w[1] == "detail") {
         s.set_detail_scale(f(w[2]));
       } else {
@@ -141,10 +149,13 @@ ScriptFrame Script::run_frame(Session& s, PcaView& pca) {
         if (w[1] == "glow_strength") l.glow_strength = v;
         if (w[1] == "transfer") {
           l.transfer.clear();
+          l.transfer_at.clear();
           for (size_t i = 2; i < w.size() && w[2] != "off"; ++i) {
             unsigned r = 0, g = 0, b = 0;
             std::sscanf(w[i].c_str(), "#%2x%2x%2x", &r, &g, &b);
             l.transfer.push_back({r / 255.0f, g / 255.0f, b / 255.0f});
+            const size_t sep = w[i].find('@');
+            if (sep != std::string::npos) l.transfer_at.push_back(f(w[i].substr(sep + 1)));
           }
         }
         s.set_look(l);

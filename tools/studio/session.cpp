@@ -194,6 +194,18 @@ void Session::set_look(const Look& l) {
   if (edits_.look.transfer.size() == 1) edits_.look.transfer.clear();
   for (auto& c : edits_.look.transfer)
     for (float& v : c) v = std::clamp(v, 0.0f, 1.0f);
+  // Each stop's place: as many as the stops (else evenly spaced), rising, in 0..1.
+  auto& at = edits_.look.transfer_at;
+  at = l.transfer_at;
+  if (at.size() != edits_.look.transfer.size()) at = Look::even_places(edits_.look.transfer.size());
+  for (size_t i = 0; i < at.size(); ++i) at[i] = std::clamp(at[i], i > 0 ? at[i - 1] : 0.0f, 1.0f);
+}
+
+void Session::set_stop_place(int k, float place) {
+  auto& at = edits_.look.transfer_at;
+  if (k < 0 || static_cast<size_t>(k) >= at.size()) return;
+  const size_t u = static_cast<size_t>(k);
+  at[u] = std::clamp(place, u > 0 ? at[u - 1] : 0.0f, u + 1 < at.size() ? at[u + 1] : 1.0f);
 }
 
 void Session::reset_edits() {
@@ -231,13 +243,17 @@ std::string Session::scene_text() const {
   s += "glow_radius = " + num(l.glow_radius) + "\n";
   s += "glow_strength = " + num(l.glow_strength) + "\n";
   if (l.transfer.size() >= 2) {
+    // Evenly spaced stops as the plain list; else each with its place (#rrggbb@0.25).
+    const bool placed = !l.evenly_spaced();
     std::string stops;
-    for (const auto& c : l.transfer) {
+    for (size_t i = 0; i < l.transfer.size(); ++i) {
+      const auto& c = l.transfer[i];
       char hex[8];
       std::snprintf(hex, sizeof hex, "#%02x%02x%02x", static_cast<int>(std::lround(c[0] * 255)),
                     static_cast<int>(std::lround(c[1] * 255)),
                     static_cast<int>(std::lround(c[2] * 255)));
       stops += (stops.empty() ? "" : " ") + std::string(hex);
+      if (placed) stops += "@" + num(l.transfer_at[i]);
     }
     s += "transfer = \"" + stops + "\"  # used instead of hue and saturation\n";
   }

@@ -64,6 +64,8 @@ class Session {
   void set_offset(int k, float sigmas);
   void set_detail_scale(float s);
   void set_look(const Look& look);
+  // Moves transfer stop k to `place` (0..1), kept between its neighbours.
+  void set_stop_place(int k, float place);
   void reset_edits();  // records an undo step itself
   bool undo();
   size_t undo_depth() const { return undo_.size(); }

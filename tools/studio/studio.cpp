@@ -116,6 +116,7 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
   out << "flame_image = " << rect_text(p.drawn().flame_image) << "\n";
   out << "flame_view = " << rect_text(p.drawn().flame_view) << "\n";
   out << "pca = " << rect_text(p.drawn().pca) << "\n";
+  out << "transfer_places = " << rect_text(p.drawn().transfer_places) << "\n";
   out << "pca_yaw = " << pca.yaw() << "\npca_pitch = " << pca.pitch()
       << "\npca_zoom = " << pca.scale() << "\n";
   out << "status = " << s.status << "\n";
@@ -136,8 +137,9 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
     out << "\nhue = " << l.hue << "\nhue_top = " << (l.has_hue_top ? l.hue_top : l.hue)
         << "\nsaturation = " << l.saturation << "\nbrightness = " << l.brightness
         << "\nglow_radius = " << l.glow_radius << "\nglow_strength = " << l.glow_strength
-        << "\ntransfer_stops = " << l.transfer.size()
-        << "\ndetail_scale = " << s.edits().weights.detail_scale
+        << "\ntransfer_stops = " << l.transfer.size() << "\ntransfer_at =";
+    for (float v : l.transfer_at) out << ' ' << v;
+    out << "\ndetail_scale = " << s.edits().weights.detail_scale
         << "\nundo_depth = " << s.undo_depth() << "\n";
   }
   if (!out) throw RuntimeError(path + ": cannot write the dump");

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <mutex>
 
@@ -78,10 +79,15 @@ std::shared_ptr<EigenModel> derive(std::shared_ptr<const model::FlameModel> m, s
   return em;
 }
 
-// transfer = "#000000 #8a1800 #ff8020 #fff0c0": evenly spaced colour stops, dark to bright.
-std::vector<Vec3> parse_transfer(ParamReader& r) {
+// transfer = "#000000 #8a1800 #ff8020 #fff0c0": evenly spaced colour stops,
+// dark to bright; "#000000@0 #8a1800@0.2 ...": each at its place (0..1 of
+// the gray above the black level; all stops placed or none, rising).
+std::vector<Vec3> parse_transfer(ParamReader& r, std::vector<float>& places) {
   std::vector<Vec3> stops;
   const std::string text = r.string("transfer", "");
+  const std::string what =
+      "expected colour stops \"#rrggbb #rrggbb ...\" or placed \"#rrggbb@0 #rrggbb@0.4 ... "
+      "#rrggbb@1\" (places 0..1, rising), got \"";
   size_t at = 0;
   while (at < text.size()) {
     const size_t end = text.find_first_of(" ,", at);
@@ -90,9 +96,23 @@ std::vector<Vec3> parse_transfer(ParamReader& r) {
     at = end == std::string::npos ? text.size() : end + 1;
     if (tok.empty()) continue;
     unsigned cr = 0, cg = 0, cb = 0;
-    if (tok.size() != 7 || tok[0] != '#' ||
-        std::sscanf(tok.c_str() + 1, "%2x%2x%2x", &cr, &cg, &cb) != 3)
-      r.fail("transfer", "expected colour stops \"#rrggbb #rrggbb ...\", got \"" + tok + "\"");
+    const size_t sep = tok.find('@');
+    const std::string colour = tok.substr(0, sep);
+    if (colour.size() != 7 || colour[0] != '#' ||
+        std::sscanf(colour.c_str() + 1, "%2x%2x%2x", &cr, &cg, &cb) != 3)
+      r.fail("transfer", what + echo_value(tok) + "\"");
+    const bool placed = sep != std::string::npos;
+    if (!stops.empty() && placed != !places.empty())
+      r.fail("transfer", what + echo_value(tok) + "\": place all stops or none");
+    if (placed) {
+      const std::string place = tok.substr(sep + 1);
+      char* rest = nullptr;
+      const double p = place.empty() ? std::nan("") : std::strtod(place.c_str(), &rest);
+      if (!std::isfinite(p) || *rest != '\0' || p < 0 || p > 1 ||
+          (!places.empty() && p < places.back()))
+        r.fail("transfer", what + echo_value(tok) + "\"");
+      places.push_back(static_cast<float>(p));
+    }
     stops.push_back({cr / 255.0f, cg / 255.0f, cb / 255.0f});
   }
   if (!text.empty() && stops.size() < 2) r.fail("transfer", "expected at least two colour stops");
@@ -116,7 +136,7 @@ class EigenFlame final : public Element {
     const float hue = s.has_hue ? s.hue : m.colour.hue;
     const float sat = s.has_saturation ? s.saturation : m.colour.saturation;
     const float black = m.colour.black_level;
-    look.ramp = s.transfer.size() >= 2 ? transfer_ramp(s.transfer, black)
+    look.ramp = s.transfer.size() >= 2 ? transfer_ramp(s.transfer, black, s.transfer_at)
                                        : hls_ramp(hue, sat, black, s.has_hue_top ? s.hue_top : hue);
     look.brightness = s.brightness;
     look.glow_radius = s.has_glow_radius ? s.glow_radius : std::max(0.02f, m.colour.glow_radius);
@@ -365,7 +385,7 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
   s.hue_top = static_cast<float>(r.number("hue_top", s.hue_top, 0, 360));
   s.has_saturation = r.has("saturation");
   s.saturation = static_cast<float>(r.number("saturation", s.saturation, 0, 1));
-  s.transfer = parse_transfer(r);
+  s.transfer = parse_transfer(r, s.transfer_at);
   {
     const auto offsets = r.numbers("weight_offsets", -EigenWeightEdits::kMaxOffset,
                                    EigenWeightEdits::kMaxOffset, EigenWeightEdits::kShapeWeights);

@@ -26,6 +26,8 @@
 //                              # with the cube of the gray: deep orange edges, yellow core
 //   saturation = 0.9
 //   transfer = "#000000 #8a1800 #ff8020 #fff0c0"  # or a transfer function (even stops)
+//   transfer = "#000000@0 #8a1800@0.2 #ff8020@0.5 #fff0c0@1"  # or stops at chosen places
+//                              # (all or none placed; 0..1 of the gray, rising)
 //   weight_offsets = [0, 0, 1.5]  # graph/story drivers: weight k moved by this many standard
 //                              # deviations of weight k over the model's frames (at most 50
 //                              # entries, each -5..5; the studio's weight sliders)
@@ -98,7 +100,8 @@ struct EigenFlameSettings {
   bool has_hue = false, has_hue_top = false, has_saturation = false, has_glow_radius = false,
        has_glow_strength = false;
   float hue = 28, hue_top = 28, saturation = 0.9f;
-  std::vector<Vec3> transfer;  // non-empty: overrides HLS
+  std::vector<Vec3> transfer;      // non-empty: overrides HLS
+  std::vector<float> transfer_at;  // empty: evenly spaced; else each stop's place (0..1)
   float brightness = 1.0f;
   float glow_radius = 0.12f, glow_strength = 0.6f;
   float edge_fade = 0.05f;
