@@ -712,4 +712,60 @@ TEST(Studio, DraggingAStopsPlaceHandleMovesIt) {
   EXPECT_EQ(read_dump(work("td2.txt")).at("undo_depth"), "3") << "set transfer and two drags";
 }
 
+// A report is shown fitted to the controls' width; hovering it shows it at
+// its own size (the plots' text is a small bitmap font).
+TEST(Studio, HoveringAReportShowsItFullSize) {
+  const std::string model = work("wide.cmodel"), folder = model + ".report";
+  fs::copy_file(kFire, model, fs::copy_options::overwrite_existing);
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  candela::Image img;
+  img.width = 600;
+  img.height = 200;
+  img.channels = 3;
+  img.pixels.resize(600 * 200 * 3);
+  for (size_t p = 0; p < img.pixels.size(); p += 3)
+    img.pixels[p] = 40, img.pixels[p + 1] = 200, img.pixels[p + 2] = 120;
+  candela::write_png(folder + "/trajectory.png", img);
+  auto shown = [](const candela::Image& shot, int* cx = nullptr, int* cy = nullptr) {
+    int n = 0;
+    long sx = 0, sy = 0;
+    for (int y = 0; y < shot.height; ++y)
+      for (int x = 0; x < shot.width; ++x)
+        if (shot.at(x, y, 0) == 40 && shot.at(x, y, 1) == 200 && shot.at(x, y, 2) == 120)
+          ++n, sx += x, sy += y;
+    if (cx && n) *cx = static_cast<int>(sx / n), *cy = static_cast<int>(sy / n);
+    return n;
+  };
+  ASSERT_EQ(studio(model, "hover0",
+                   "pause\nshow reports\nwait 3\nscreenshot " + work("hv0.png") + "\nquit\n"),
+            0)
+      << log_text();
+  int cx = 0, cy = 0;
+  const int fitted = shown(candela::read_png(work("hv0.png"), 3), &cx, &cy);
+  ASSERT_GT(fitted, 5000) << "the report, fitted";
+  const std::string at = std::to_string(cx) + " " + std::to_string(cy);
+  ASSERT_EQ(studio(model, "hover1",
+                   "pause\nshow reports\nwait 3\nx-move " + at + "\nwait 3\nscreenshot " +
+                       work("hv1.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto hovered = candela::read_png(work("hv1.png"), 3);
+  const int full = shown(hovered);
+  // The widest row of the report's colour: the fitted image is at most the
+  // controls' width (360), the full-size one 600.
+  int widest = 0;
+  for (int y = 0; y < hovered.height; ++y)
+    for (int x = 0, run = 0; x < hovered.width; ++x) {
+      const bool on =
+          hovered.at(x, y, 0) == 40 && hovered.at(x, y, 1) == 200 && hovered.at(x, y, 2) == 120;
+      run = on ? run + 1 : 0;
+      widest = std::max(widest, run);
+    }
+  std::printf("report pixels: fitted %d, hovered %d (600x200 = 120000), widest row %d\n", fitted,
+              full, widest);
+  EXPECT_GE(widest, 600) << "shown at its own size";
+  EXPECT_GT(full, fitted + 100000);
+}
+
 }  // namespace
