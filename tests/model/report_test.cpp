@@ -5,6 +5,7 @@
 // found by stamping the expected words in the plots' own font and looking
 // for them, pixel for pixel.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -102,7 +103,9 @@ int longest_black_run(const candela::Image& img, bool rows) {
 class Reports : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = (fs::temp_directory_path() / "candela-report-test").string();
+    // A folder of this run's own (other builds may run this test at the same time).
+    dir_ =
+        (fs::temp_directory_path() / ("candela-report-test-" + std::to_string(getpid()))).string();
     fs::remove_all(dir_);
     ct::BuildOptions o;
     o.pca.components = 8;
@@ -112,6 +115,7 @@ class Reports : public ::testing::Test {
     ct::write_reports(*data_, m, dir_);
   }
   static void TearDownTestSuite() {
+    fs::remove_all(dir_);
     delete data_;
     data_ = nullptr;
   }
