@@ -48,7 +48,27 @@ std::string num(float v) {
   return s;
 }
 
+// Written whole or not at all (a temporary file renamed over it).
+void write_file(const std::string& path, const std::string& text, const char* what) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.close();
+    if (!out) throw RuntimeError(path + ": cannot write the " + what);
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw RuntimeError(path + ": cannot write the " + what + ": " + ec.message());
+}
+
 }  // namespace
+
+void set_method(story::TransitionSpec& t, story::Method m) {
+  if (m == story::Method::kBridge && t.method != m) t.steps = 0;
+  if (m == story::Method::kGrow && t.steps < 2) t.steps = 20;
+  t.method = m;
+}
 
 Session::Session(std::string model, std::string story)
     : model_name_(std::move(model)), story_name_(std::move(story)) {
@@ -69,6 +89,7 @@ Session::Session(std::string model, std::string story)
                  " (a saved scene plays the story's own model)";
       // The runtime always loops a story (through the first segment's transition).
       plan_ = std::make_unique<story::StoryPlan>(story::plan_story(desc, m, desc.seed, true));
+      desc_ = std::make_shared<const story::StoryDesc>(desc);
     } catch (const std::exception& e) {
       const std::string what = e.what();
       error_ = what.find(story_name_) == std::string::npos ? story_name_ + ": " + what : what;
@@ -164,8 +185,8 @@ void Session::update_shown() {
 }
 
 void Session::begin_edit(const Edits& before) {
-  if (!undo_.empty() && undo_.back() == before) return;
-  undo_.push_back(before);
+  if (!undo_.empty() && undo_.back().edits == before && undo_.back().story == desc_) return;
+  undo_.push_back({before, desc_});
   if (undo_.size() > kUndoDepth) undo_.erase(undo_.begin());
 }
 
@@ -216,10 +237,145 @@ void Session::reset_edits() {
 
 bool Session::undo() {
   if (undo_.empty()) return false;
-  edits_ = undo_.back();
+  edits_ = undo_.back().edits;
+  if (undo_.back().story != desc_) {
+    if (undo_.back().story) {
+      replan(undo_.back().story);
+    } else {  // back to no story: the model's clips
+      desc_.reset();
+      plan_.reset();
+      seek(frame());
+    }
+  }
   undo_.pop_back();
   update_shown();
   return true;
+}
+
+bool Session::replan(std::shared_ptr<const story::StoryDesc> desc) {
+  try {
+    // The runtime always loops a story (through the first segment's transition).
+    auto plan = std::make_unique<story::StoryPlan>(
+        story::plan_story(*desc, *model_->model, desc->seed, true));
+    plan_ = std::move(plan);
+    desc_ = std::move(desc);
+  } catch (const std::exception& e) {
+    status = e.what();
+    return false;
+  }
+  seek(frame());  // wraps into the new length
+  return true;
+}
+
+bool Session::new_story() {
+  if (!ok()) return false;
+  const model::FlameModel& m = *model_->model;
+  auto d = std::make_shared<story::StoryDesc>();
+  d->file = "<new story>";
+  d->model = model_name_;
+  for (const auto& c : m.clips) {
+    if (d->segments.size() >= story::kMaxSegments) break;
+    story::SegmentSpec g;
+    g.clip = c.name;
+    d->segments.push_back(g);
+  }
+  if (d->segments.empty()) {
+    story::SegmentSpec g;
+    g.to = m.frames();
+    d->segments.push_back(g);
+  }
+  return edit_story([&](story::StoryDesc& s) { s = *d; });
+}
+
+bool Session::edit_story(const std::function<void(story::StoryDesc&)>& change) {
+  if (!ok()) return false;
+  auto d =
+      desc_ ? std::make_shared<story::StoryDesc>(*desc_) : std::make_shared<story::StoryDesc>();
+  change(*d);
+  if (d->segments.empty()) {
+    status = "a story needs at least one segment";
+    return false;
+  }
+  // Read back from the text "Save story" writes: validated as the story
+  // reader validates a file (and keyed by place: "segment[2].transition").
+  std::shared_ptr<const story::StoryDesc> read;
+  try {
+    read = std::make_shared<const story::StoryDesc>(
+        story::load_story_text(story_text_of(*d), "<studio story>"));
+  } catch (const std::exception& e) {
+    status = e.what();
+    return false;
+  }
+  const auto before = desc_;
+  const Edits edits = edits_;
+  if (!replan(read)) return false;
+  if (!undo_.empty() && undo_.back().edits == edits && undo_.back().story == before) return true;
+  undo_.push_back({edits, before});
+  if (undo_.size() > kUndoDepth) undo_.erase(undo_.begin());
+  return true;
+}
+
+float Session::joint_seam(int seg) const {
+  if (!plan_) return -1;
+  const std::string key = "segment[" + std::to_string(seg) + "].transition";
+  float worst = -1;
+  for (const auto& j : plan_->joints())
+    if (j.key == key) worst = std::max(worst, j.seam_ratio);
+  return worst;
+}
+
+int Session::joint_frame(int seg) const {
+  if (!plan_) return -1;
+  const std::string key = "segment[" + std::to_string(seg) + "].transition";
+  for (const auto& j : plan_->joints())
+    if (j.key == key) return j.first;
+  return -1;
+}
+
+bool Session::preview_joint(int seg) {
+  const int at = joint_frame(seg);
+  if (at < 0) return false;
+  seek(at - static_cast<int>(std::lround(2 * fps())));
+  playing = true;
+  return true;
+}
+
+std::string Session::story_text() const { return desc_ ? story_text_of(*desc_) : std::string{}; }
+
+std::string Session::story_text_of(const story::StoryDesc& d) const {
+  std::string s = "# Written by candela-tool studio.\n# candela-tool story THIS_FILE --no-render\n";
+  s += "model = " + toml_string(scene_path(model_name_)) + "\n";
+  if (d.has_seed) s += "seed = " + std::to_string(d.seed) + "\n";
+  s += std::string("loop = ") + (d.loop ? "true" : "false") + "\n";
+  s += "components = " + std::to_string(d.components) + "\n";
+  for (const auto& g : d.segments) {
+    s += "\n[[segment]]\n";
+    if (g.kind == story::SegmentKind::kFrames) {
+      if (!g.clip.empty()) s += "clip = " + toml_string(g.clip) + "\n";
+      if (g.clip.empty() || g.from != 0) s += "from = " + std::to_string(g.from) + "\n";
+      if (g.to >= 0) s += "to = " + std::to_string(g.to) + "\n";
+    } else {
+      s += std::string(g.kind == story::SegmentKind::kArp ? "arp" : "walk") + " = " +
+           num(static_cast<float>(g.seconds)) + "\n";
+    }
+    if (g.repeat != 1) s += "repeat = " + std::to_string(g.repeat) + "\n";
+    const story::TransitionSpec& t = g.transition;
+    s += "transition = { method = \"" + std::string(story::method_name(t.method)) + "\"";
+    if (t.method == story::Method::kLowpass)
+      s += ", kernel = [" + num(t.kernel[0]) + ", " + num(t.kernel[1]) + ", " + num(t.kernel[2]) +
+           "], components = " + std::to_string(t.components);
+    if (t.method == story::Method::kBridge || t.method == story::Method::kGrow)
+      s += ", steps = " + std::to_string(t.steps) + ", theta_min = " + num(t.theta_min) +
+           ", reject_tail = " + std::to_string(t.reject_tail);
+    s += " }\n";
+  }
+  return s;
+}
+
+void Session::save_story(const std::string& path) {
+  if (!desc_) throw RuntimeError(path + ": no story to save (start one: New story)");
+  write_file(path, story_text(), "story");
+  story_name_ = path;
 }
 
 std::string Session::scene_text() const {
@@ -274,16 +430,7 @@ std::string Session::scene_text() const {
 
 void Session::save_scene(const std::string& path) const {
   if (!ok()) throw RuntimeError(path + ": no model open, nothing to save");
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << scene_text();
-    out.close();
-    if (!out) throw RuntimeError(path + ": cannot write the scene");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw RuntimeError(path + ": cannot write the scene: " + ec.message());
+  write_file(path, scene_text(), "scene");
 }
 
 }  // namespace candela::studio

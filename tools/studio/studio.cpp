@@ -117,6 +117,7 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
   out << "flame_view = " << rect_text(p.drawn().flame_view) << "\n";
   out << "pca = " << rect_text(p.drawn().pca) << "\n";
   out << "transfer_places = " << rect_text(p.drawn().transfer_places) << "\n";
+  out << "timeline = " << rect_text(p.drawn().timeline) << "\n";
   out << "pca_yaw = " << pca.yaw() << "\npca_pitch = " << pca.pitch()
       << "\npca_zoom = " << pca.scale() << "\n";
   out << "status = " << s.status << "\n";
@@ -141,6 +142,13 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
     for (float v : l.transfer_at) out << ' ' << v;
     out << "\ndetail_scale = " << s.edits().weights.detail_scale
         << "\nundo_depth = " << s.undo_depth() << "\n";
+    // The story being composed: its segments and where each one's joint starts.
+    const int n = s.story() ? static_cast<int>(s.story()->segments.size()) : 0;
+    out << "story_segments = " << n << "\nstory_joint_frames =";
+    for (int i = 0; i < n; ++i) out << ' ' << s.joint_frame(i);
+    out << "\nstory_seams =";
+    for (int i = 0; i < n; ++i) out << ' ' << s.joint_seam(i);
+    out << "\n";
   }
   if (!out) throw RuntimeError(path + ": cannot write the dump");
 }
