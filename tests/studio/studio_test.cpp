@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "story/story_file.h"
 
 namespace fs = std::filesystem;
 
@@ -766,6 +768,159 @@ TEST(Studio, HoveringAReportShowsItFullSize) {
               full, widest);
   EXPECT_GE(widest, 600) << "shown at its own size";
   EXPECT_GT(full, fitted + 100000);
+}
+
+// ---------------------------------------------------------------------------
+// The story timeline: joints edited, segments added, removed and moved, each
+// edit re-planned by the runtime's planner; saved stories read back.
+
+const std::string kTour = "builtin:fire builtin:fire-tour";
+
+std::string text_of(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(Studio, AJointsMethodIsSavedAndTheStoryPassesItsSeamCheck) {
+  const std::string story = work("edited-story.toml"), scene = work("edited-story-scene.toml");
+  ASSERT_EQ(studio(kTour, "joint",
+                   "pause\nstory method 2 bridge\nstory set 2 steps 4\nstory method 1 grow\n"
+                   "story set 1 theta_min 900\nsave-story " +
+                       story + "\nsave-scene " + scene + "\nquit\n"),
+            0)
+      << log_text();
+  // The story reader reads it back with the chosen methods and parameters.
+  const candela::story::StoryDesc d = candela::story::load_story_file(story);
+  ASSERT_EQ(d.segments.size(), 4u);
+  EXPECT_EQ(d.segments[2].transition.method, candela::story::Method::kBridge);
+  EXPECT_EQ(d.segments[2].transition.steps, 4);
+  EXPECT_EQ(d.segments[1].transition.method, candela::story::Method::kGrow);
+  EXPECT_FLOAT_EQ(d.segments[1].transition.theta_min, 900);
+  EXPECT_EQ(d.segments[1].repeat, 2);
+  EXPECT_EQ(d.segments[3].kind, candela::story::SegmentKind::kWalk);
+  EXPECT_EQ(d.seed, 17u);
+  // The tool plans it and every joint passes the seam bound (exit 3 otherwise).
+  ASSERT_EQ(run(std::string(CANDELA_TOOL) + " story " + story + " --no-render"), 0) << log_text();
+  EXPECT_NE(log_text().find("joint segment[1] -> segment[2]             bridge"), std::string::npos)
+      << log_text();
+  // A scene saved after it plays the saved story, and candela --check accepts it.
+  EXPECT_NE(text_of(scene).find("story = \"" + story + "\""), std::string::npos) << text_of(scene);
+  ASSERT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + scene), 0) << log_text();
+}
+
+TEST(Studio, AddingDeletingAndMovingSegmentsReplansTheStory) {
+  // Every joint a cut: the story is exactly its segments' frames
+  // (120 + 2 x 150 + 120 + 6 s of walk at 30 fps = 720).
+  const std::string cuts =
+      "pause\nstory method 0 cut\nstory method 1 cut\nstory method 2 cut\nstory method 3 cut\n";
+  const std::string saved = work("moved-story.toml");
+  ASSERT_EQ(studio(kTour, "segments",
+                   cuts + "dump " + work("s0.txt") + "\nstory add clip fire-calm 0 60\n" +
+                       "story method 4 cut\ndump " + work("s1.txt") + "\nstory delete 3\ndump " +
+                       work("s2.txt") + "\nstory move 2 right\ndump " + work("s3.txt") +
+                       "\nsave-story " + saved + "\nquit\n"),
+            0)
+      << log_text();
+  auto frames = [](const std::string& f) { return std::stoi(read_dump(work(f)).at("frames")); };
+  EXPECT_EQ(frames("s0.txt"), 720);
+  EXPECT_EQ(frames("s1.txt"), 780) << "a 60-frame segment added";
+  EXPECT_EQ(frames("s2.txt"), 600) << "the 6 s walk (180 frames) deleted";
+  EXPECT_EQ(frames("s3.txt"), 600) << "a move keeps the frames";
+  EXPECT_EQ(read_dump(work("s3.txt")).at("story_segments"), "4");
+  const candela::story::StoryDesc d = candela::story::load_story_file(saved);
+  ASSERT_EQ(d.segments.size(), 4u);
+  EXPECT_EQ(d.segments[2].to, 60) << "the added segment moved left of the last T1";
+  EXPECT_EQ(d.segments[3].to, 120);
+  // The tool plans the saved story to the studio's frame count.
+  ASSERT_EQ(run(std::string(CANDELA_TOOL) + " story " + saved + " --no-render --max-seam 100"), 0)
+      << log_text();
+  EXPECT_NE(log_text().find(": 600 frames"), std::string::npos) << log_text();
+}
+
+TEST(Studio, PreviewJointPlaysFromJustBeforeTheJoint) {
+  ASSERT_EQ(studio(kTour, "preview",
+                   "pause\nframe 5\npreview joint 2\ndump " + work("p0.txt") + "\nwait 150\ndump " +
+                       work("p1.txt") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d0 = read_dump(work("p0.txt")), d1 = read_dump(work("p1.txt"));
+  const int joint = static_cast<int>(numbers(d0.at("story_joint_frames"))[2]);
+  const int at = std::stoi(d0.at("frame"));
+  EXPECT_LT(at, joint);
+  EXPECT_GE(at, joint - 61) << "about two seconds (30 fps) before it";
+  EXPECT_EQ(d0.at("playing"), "1");
+  EXPECT_GT(std::stoi(d1.at("frame")), joint) << "and it plays through the joint";
+}
+
+TEST(Studio, UndoRestoresThePreviousStory) {
+  const std::string saved = work("undone-story.toml");
+  ASSERT_EQ(studio(kTour, "story-undo",
+                   "pause\ndump " + work("u0.txt") + "\nstory method 1 cut\nstory delete 3\ndump " +
+                       work("u1.txt") + "\nundo\nundo\ndump " + work("u2.txt") + "\nsave-story " +
+                       saved + "\nquit\n"),
+            0)
+      << log_text();
+  const auto u0 = read_dump(work("u0.txt")), u1 = read_dump(work("u1.txt")),
+             u2 = read_dump(work("u2.txt"));
+  EXPECT_NE(u1.at("frames"), u0.at("frames"));
+  EXPECT_EQ(u1.at("story_segments"), "3");
+  EXPECT_EQ(u2.at("frames"), u0.at("frames"));
+  EXPECT_EQ(u2.at("story_segments"), "4");
+  EXPECT_EQ(u2.at("story_seams"), u0.at("story_seams"));
+  const candela::story::StoryDesc d = candela::story::load_story_file(saved);
+  EXPECT_EQ(d.segments[1].transition.method, candela::story::Method::kBridge);
+}
+
+TEST(Studio, ANewStoryFromTheModelsClipsIsSavedAndPlays) {
+  const std::string saved = work("new-story.toml");
+  ASSERT_EQ(studio(kFire, "new-story",
+                   "pause\ndump " + work("n0.txt") + "\nstory new\nstory add walk 2\ndump " +
+                       work("n1.txt") + "\nsave-story " + saved + "\nquit\n"),
+            0)
+      << log_text();
+  EXPECT_EQ(read_dump(work("n0.txt")).at("story_segments"), "0");
+  EXPECT_EQ(read_dump(work("n1.txt")).at("story_segments"), "2");
+  const candela::story::StoryDesc d = candela::story::load_story_file(saved);
+  ASSERT_EQ(d.segments.size(), 2u);
+  EXPECT_EQ(d.segments[0].clip, "fire-calm");
+  EXPECT_EQ(d.model, fs::absolute(kFire).lexically_normal().string());
+  ASSERT_EQ(run(std::string(CANDELA_TOOL) + " story " + saved + " --no-render"), 0) << log_text();
+}
+
+TEST(Studio, TheTimelineShowsSegmentsAsWideAsTheirFrames) {
+  // All cuts: 720 frames, segment 0 the first 120, segment 1 the next 300.
+  ASSERT_EQ(studio(kTour, "timeline",
+                   "pause\nstory method 0 cut\nstory method 1 cut\nstory method 2 cut\n"
+                   "story method 3 cut\nframe 540\nwait 2\ndump " +
+                       work("tl.txt") + "\nscreenshot " + work("tl.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d = read_dump(work("tl.txt"));
+  const auto r = numbers(d.at("timeline"));
+  ASSERT_EQ(r.size(), 4u);
+  ASSERT_GT(r[2], 300);
+  const auto img = candela::read_png(work("tl.png"), 3);
+  const int y = static_cast<int>(r[1] + 25);  // inside the blocks, under their labels
+  auto colour = [&](double x) {
+    const int xi = static_cast<int>(x);
+    return std::array<int, 3>{img.at(xi, y, 0), img.at(xi, y, 1), img.at(xi, y, 2)};
+  };
+  auto at_frame = [&](double f) { return r[0] + r[2] * f / 720; };
+  // A block's colour changes where the segment does and not inside it.
+  EXPECT_EQ(colour(at_frame(30)), colour(at_frame(100)));
+  EXPECT_NE(colour(at_frame(100)), colour(at_frame(200)));
+  EXPECT_EQ(colour(at_frame(200)), colour(at_frame(400)));  // both repeats of segment 1
+  EXPECT_NE(colour(at_frame(400)), colour(at_frame(470)));
+  // The play position: a white line at frame 540 of 720.
+  int whitest = -1, best = 0;
+  for (int x = static_cast<int>(r[0]); x < static_cast<int>(r[0] + r[2]); ++x) {
+    const auto c = colour(x);
+    if (c[0] + c[1] + c[2] > best) best = c[0] + c[1] + c[2], whitest = x;
+  }
+  EXPECT_EQ(best, 3 * 255);
+  EXPECT_NEAR(whitest, at_frame(540), 3);
 }
 
 }  // namespace
