@@ -440,6 +440,7 @@ void Panels::draw_timeline(Session& s) {
   if (ImGui::Button("Undo") && s.undo()) s.status = "undone";
   ImGui::SameLine();
   ImGui::TextDisabled("%d frames, %d segments", p.frames(), n);
+  if (!s.status.empty()) ImGui::TextWrapped("%s", s.status.c_str());  // a refused edit says why
 }
 
 void Panels::draw_error(const Session& s, const Layout& l) {
