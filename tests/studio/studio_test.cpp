@@ -877,11 +877,15 @@ TEST(Studio, ANewStoryFromTheModelsClipsIsSavedAndPlays) {
   const std::string saved = work("new-story.toml");
   ASSERT_EQ(studio(kFire, "new-story",
                    "pause\ndump " + work("n0.txt") + "\nstory new\nstory add walk 2\ndump " +
-                       work("n1.txt") + "\nsave-story " + saved + "\nquit\n"),
+                       work("n1.txt") + "\nsave-story " + saved + "\nundo\nundo\ndump " +
+                       work("n2.txt") + "\nquit\n"),
             0)
       << log_text();
   EXPECT_EQ(read_dump(work("n0.txt")).at("story_segments"), "0");
   EXPECT_EQ(read_dump(work("n1.txt")).at("story_segments"), "2");
+  const auto n2 = read_dump(work("n2.txt"));
+  EXPECT_EQ(n2.at("story_segments"), "0") << "undone back to no story";
+  EXPECT_EQ(n2.at("frames"), "300") << "the model's own frames again";
   const candela::story::StoryDesc d = candela::story::load_story_file(saved);
   ASSERT_EQ(d.segments.size(), 2u);
   EXPECT_EQ(d.segments[0].clip, "fire-calm");
@@ -921,6 +925,27 @@ TEST(Studio, TheTimelineShowsSegmentsAsWideAsTheirFrames) {
   }
   EXPECT_EQ(best, 3 * 255);
   EXPECT_NEAR(whitest, at_frame(540), 3);
+  EXPECT_EQ(d.at("story_selected"), "0");
+}
+
+TEST(Studio, ClickingATimelineBlockSelectsItsSegment) {
+  ASSERT_EQ(studio(kTour, "tl-rect", "pause\nwait 2\ndump " + work("tr.txt") + "\nquit\n"), 0)
+      << log_text();
+  const auto r = numbers(read_dump(work("tr.txt")).at("timeline"));
+  ASSERT_EQ(r.size(), 4u);
+  const auto joints = numbers(read_dump(work("tr.txt")).at("story_joint_frames"));
+  const int frames = std::stoi(read_dump(work("tr.txt")).at("frames"));
+  // The middle of segment 3 (the walk): between its joint and the loop joint.
+  const double f = (joints[3] + frames) / 2;
+  const std::string at = std::to_string(static_cast<int>(r[0] + r[2] * f / frames)) + " " +
+                         std::to_string(static_cast<int>(r[1] + 20));
+  ASSERT_EQ(
+      studio(kTour, "tl-click",
+             "pause\nwait 2\nx-move " + at + "\nwait 1\nx-press " + at + "\nwait 1\nx-release " +
+                 at + "\nwait 2\ndump " + work("tc.txt") + "\nquit\n"),
+      0)
+      << log_text();
+  EXPECT_EQ(read_dump(work("tc.txt")).at("story_selected"), "3");
 }
 
 }  // namespace

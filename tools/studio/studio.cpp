@@ -144,7 +144,8 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
         << "\nundo_depth = " << s.undo_depth() << "\n";
     // The story being composed: its segments and where each one's joint starts.
     const int n = s.story() ? static_cast<int>(s.story()->segments.size()) : 0;
-    out << "story_segments = " << n << "\nstory_joint_frames =";
+    out << "story_segments = " << n << "\nstory_selected = " << p.selected
+        << "\nstory_joint_frames =";
     for (int i = 0; i < n; ++i) out << ' ' << s.joint_frame(i);
     out << "\nstory_seams =";
     for (int i = 0; i < n; ++i) out << ' ' << s.joint_seam(i);
