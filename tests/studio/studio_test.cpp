@@ -948,4 +948,32 @@ TEST(Studio, ClickingATimelineBlockSelectsItsSegment) {
   EXPECT_EQ(read_dump(work("tc.txt")).at("story_selected"), "3");
 }
 
+TEST(Studio, TypingAJointsStepsIsOneUndoStep) {
+  // Segment 0 (selected) is entered by grow, steps = 20: its steps field is shown.
+  ASSERT_EQ(studio(kTour, "steps-rect", "pause\nwait 2\ndump " + work("sr.txt") + "\nquit\n"), 0)
+      << log_text();
+  const auto r = numbers(read_dump(work("sr.txt")).at("joint_steps"));
+  ASSERT_EQ(r.size(), 4u);
+  ASSERT_GT(r[2], 0);
+  const std::string field = std::to_string(static_cast<int>(r[0] + 8)) + " " +
+                            std::to_string(static_cast<int>(r[1] + r[3] / 2));
+  const std::string away = std::to_string(static_cast<int>(r[0])) + " 5";  // the flame pane
+  const std::string saved = work("typed-story.toml");
+  // Click into the field (it selects its text), type 3 then 7, click away.
+  ASSERT_EQ(studio(kTour, "steps-type",
+                   "pause\nwait 2\nx-move " + field + "\nwait 1\nx-press " + field +
+                       "\nwait 1\nx-release " + field + "\nwait 2\nx-key 3\nwait 2\nx-key 7\n" +
+                       "wait 2\nx-move " + away + "\nwait 1\nx-press " + away +
+                       "\nwait 1\nx-release " + away + "\nwait 2\ndump " + work("st1.txt") +
+                       "\nsave-story " + saved + "\nundo\ndump " + work("st2.txt") +
+                       "\nsave-story " + work("typed-undone.toml") + "\nquit\n"),
+            0)
+      << log_text();
+  EXPECT_EQ(candela::story::load_story_file(saved).segments[0].transition.steps, 37);
+  EXPECT_EQ(read_dump(work("st1.txt")).at("undo_depth"), "1") << "one step for the typing";
+  EXPECT_EQ(candela::story::load_story_file(work("typed-undone.toml")).segments[0].transition.steps,
+            20)
+      << "one undo takes all of it back";
+}
+
 }  // namespace

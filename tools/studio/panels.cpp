@@ -237,7 +237,7 @@ void Panels::draw(Session& s, FlameView* flame, PcaView& pca, ReportsView& repor
   ImGui::End();
   ImGui::PopStyleVar();
 
-  drawn_.timeline = {};
+  drawn_.timeline = drawn_.joint_steps = {};
   if (s.ok()) {
     place(l.timeline_pos, l.timeline_size);
     ImGui::Begin("Story timeline", nullptr, kFixed);
@@ -284,6 +284,8 @@ void Panels::draw_timeline(Session& s) {
     if (ImGui::Button("New story from the model's clips")) s.new_story();
     return;
   }
+  // A field typed into is one undo step until no widget is active.
+  if (!ImGui::IsAnyItemActive()) s.end_gesture();
   const story::StoryDesc& d = *s.story();
   const story::StoryPlan& p = *s.plan();
   const int n = static_cast<int>(d.segments.size());
@@ -356,7 +358,8 @@ void Panels::draw_timeline(Session& s) {
   ImGui::SetNextItemWidth(90);
   if (ImGui::InputInt("repeats", &repeat))
     s.edit_story(
-        [&](story::StoryDesc& e) { e.segments[static_cast<size_t>(selected)].repeat = repeat; });
+        [&](story::StoryDesc& e) { e.segments[static_cast<size_t>(selected)].repeat = repeat; },
+        "repeats");
   ImGui::SameLine();
   bool loop = d.loop;
   if (ImGui::Checkbox("loop", &loop)) s.edit_story([&](story::StoryDesc& e) { e.loop = loop; });
@@ -379,6 +382,7 @@ void Panels::draw_timeline(Session& s) {
     changed |= ImGui::InputInt("components", &t.components);
   } else if (t.method != story::Method::kCut) {
     changed |= ImGui::InputInt("steps", &t.steps);
+    drawn_.joint_steps = rect_of(ImGui::GetItemRectMin(), ImGui::GetItemRectSize());
     ImGui::SameLine();
     changed |= ImGui::InputFloat("theta_min", &t.theta_min, 0, 0, "%.3g");
     ImGui::SameLine();
@@ -387,7 +391,8 @@ void Panels::draw_timeline(Session& s) {
   ImGui::PopItemWidth();
   if (changed)
     s.edit_story(
-        [&](story::StoryDesc& e) { e.segments[static_cast<size_t>(selected)].transition = t; });
+        [&](story::StoryDesc& e) { e.segments[static_cast<size_t>(selected)].transition = t; },
+        "joint");
   const float seam = s.joint_seam(selected);
   if (seam >= 0) {
     ImGui::TextColored(

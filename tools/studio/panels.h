@@ -35,7 +35,8 @@ struct DrawnRects {
   // The transfer function's row of place handles: stop k's handle is centred
   // at x + w * place(k), y + h / 2 (all 0 when the row is not shown).
   PixelRect transfer_places;
-  PixelRect timeline;  // the story's blocks (all 0 without a story)
+  PixelRect timeline;     // the story's blocks (all 0 without a story)
+  PixelRect joint_steps;  // the selected joint's steps field (0: not shown)
 };
 
 class Panels {

@@ -185,6 +185,7 @@ void Session::update_shown() {
 }
 
 void Session::begin_edit(const Edits& before) {
+  gesture_.clear();
   if (!undo_.empty() && undo_.back().edits == before && undo_.back().story == desc_) return;
   undo_.push_back({before, desc_});
   if (undo_.size() > kUndoDepth) undo_.erase(undo_.begin());
@@ -236,6 +237,7 @@ void Session::reset_edits() {
 }
 
 bool Session::undo() {
+  gesture_.clear();
   if (undo_.empty()) return false;
   edits_ = undo_.back().edits;
   if (undo_.back().story != desc_) {
@@ -287,7 +289,8 @@ bool Session::new_story() {
   return edit_story([&](story::StoryDesc& s) { s = *d; });
 }
 
-bool Session::edit_story(const std::function<void(story::StoryDesc&)>& change) {
+bool Session::edit_story(const std::function<void(story::StoryDesc&)>& change,
+                         const std::string& gesture) {
   if (!ok()) return false;
   auto d =
       desc_ ? std::make_shared<story::StoryDesc>(*desc_) : std::make_shared<story::StoryDesc>();
@@ -309,6 +312,9 @@ bool Session::edit_story(const std::function<void(story::StoryDesc&)>& change) {
   const auto before = desc_;
   const Edits edits = edits_;
   if (!replan(read)) return false;
+  const bool same_gesture = !gesture.empty() && gesture == gesture_;
+  gesture_ = gesture;
+  if (same_gesture && !undo_.empty()) return true;  // the step before the gesture holds
   if (!undo_.empty() && undo_.back().edits == edits && undo_.back().story == before) return true;
   undo_.push_back({edits, before});
   if (undo_.size() > kUndoDepth) undo_.erase(undo_.begin());

@@ -50,7 +50,12 @@ class Session {
   // Every story edit goes through here: records an undo step, applies
   // `change` to a copy, re-plans it; false (status says why, the story stays
   // as it was) when the planner refuses it.
-  bool edit_story(const std::function<void(story::StoryDesc&)>& change);
+  // `gesture` (a widget's name): edits with the same gesture, one after
+  // another, are one undo step (typing "20" into a field); end_gesture()
+  // closes it (the UI calls it when no widget is active).
+  bool edit_story(const std::function<void(story::StoryDesc&)>& change,
+                  const std::string& gesture = {});
+  void end_gesture() { gesture_.clear(); }
   // The largest seam ratio of the joints entering segment `seg` (its joint,
   // its repeats' and the loop's when it is the first), -1 when none.
   float joint_seam(int seg) const;
@@ -118,6 +123,7 @@ class Session {
     std::shared_ptr<const story::StoryDesc> story;
   };
   std::vector<UndoStep> undo_;
+  std::string gesture_;  // the story gesture the last undo step belongs to
 };
 
 }  // namespace candela::studio

@@ -118,6 +118,7 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
   out << "pca = " << rect_text(p.drawn().pca) << "\n";
   out << "transfer_places = " << rect_text(p.drawn().transfer_places) << "\n";
   out << "timeline = " << rect_text(p.drawn().timeline) << "\n";
+  out << "joint_steps = " << rect_text(p.drawn().joint_steps) << "\n";
   out << "pca_yaw = " << pca.yaw() << "\npca_pitch = " << pca.pitch()
       << "\npca_zoom = " << pca.scale() << "\n";
   out << "status = " << s.status << "\n";
