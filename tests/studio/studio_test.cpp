@@ -976,4 +976,14 @@ TEST(Studio, TypingAJointsStepsIsOneUndoStep) {
       << "one undo takes all of it back";
 }
 
+TEST(Studio, AStoryEditTheReaderRefusesIsNotMadeAndSaysWhy) {
+  // As in the UI (where the message shows under the timeline), the script stops naming it.
+  EXPECT_EQ(studio(kTour, "refused", "pause\nstory set 1 steps 500\nquit\n"), 2) << log_text();
+  EXPECT_NE(
+      log_text().find("refused.script:2: story set: <studio story>: "
+                      "segment[1].transition.steps: expected an integer in [0, 200], got 500"),
+      std::string::npos)
+      << log_text();
+}
+
 }  // namespace
