@@ -145,6 +145,26 @@ Vec3 ParamReader::vec3(std::string_view key, Vec3 def) {
   return {v[0], v[1], v[2]};
 }
 
+std::vector<double> ParamReader::numbers(std::string_view key, double min, double max,
+                                         size_t max_count) {
+  const toml::node* n = get(key);
+  std::vector<double> out;
+  if (!n) return out;
+  const std::string what = "expected an array of at most " + std::to_string(max_count) +
+                           " numbers in " + range(min, max);
+  const toml::array* a = n->as_array();
+  if (!a) fail(key, what + ", got " + describe(*n));
+  if (a->size() > max_count) fail(key, what + ", got " + std::to_string(a->size()) + " numbers");
+  for (size_t i = 0; i < a->size(); ++i) {
+    const toml::node* e = a->get(i);
+    const double v = e->is_number() ? as_double(*e) : std::nan("");
+    if (!std::isfinite(v) || v < min || v > max)
+      fail(key, what + ", got " + describe(*e) + " at index " + std::to_string(i));
+    out.push_back(v);
+  }
+  return out;
+}
+
 Vec3 ParamReader::color(std::string_view key, Vec3 def) {
   const toml::node* n = table_ ? table_->get(key) : nullptr;
   if (n && n->is_string()) {

@@ -35,6 +35,8 @@ class ParamReader {
   std::string string(std::string_view key, std::string_view def,
                      std::initializer_list<std::string_view> allowed = {});
   Vec3 vec3(std::string_view key, Vec3 def);
+  // An array of at most max_count numbers, each in [min, max] (absent: empty).
+  std::vector<double> numbers(std::string_view key, double min, double max, size_t max_count);
   // [r, g, b] in 0..1, or "#rrggbb".
   Vec3 color(std::string_view key, Vec3 def);
   // A file named relative to the scene file; must exist and be readable if given.

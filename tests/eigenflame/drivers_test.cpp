@@ -14,10 +14,12 @@
 
 #include "core/random.h"
 #include "elements/eigenflame/arp_driver.h"
+#include "elements/eigenflame/eigen_renderer.h"
 #include "elements/eigenflame/eigenflame.h"
 #include "elements/eigenflame/graph_walker.h"
 #include "elements/eigenflame/no_repeat_guard.h"
 #include "model/flame_model.h"
+#include "scene/scene_file.h"
 
 namespace candela {
 namespace {
@@ -456,6 +458,40 @@ TEST(EigenColour, HueTopTurnsTheBrightBodyYellowAndKeepsTheEdgesOrange) {
   EXPECT_GT(hue_of(&ramp[225 * 4]), hue_of(&fixed[225 * 4]) + 15.0);
   // No hue at all: the old ramp exactly.
   EXPECT_EQ(candela::hls_ramp(26, 0.95f, 0), candela::hls_ramp(26, 0.95f, 0, 26));
+}
+
+// A transfer function's stops at chosen places: each stop's colour lands at
+// its place on the gray ramp, linear between; evenly placed stops are the
+// plain (evenly spaced) ramp; the scene key reads them.
+TEST(EigenColour, TransferStopsAtChosenPlaces) {
+  const std::vector<candela::Vec3> stops = {{0, 0, 0}, {1, 0, 0}, {1, 1, 1}};
+  const std::vector<float> places = {0.0f, 0.2f, 1.0f};
+  const auto placed = candela::transfer_ramp(stops, 0, places);
+  const auto even = candela::transfer_ramp(stops, 0);
+  auto rgb = [](const std::array<uint8_t, 256 * 4>& r, int i) {
+    return std::array<int, 3>{r[i * 4], r[i * 4 + 1], r[i * 4 + 2]};
+  };
+  EXPECT_EQ(rgb(placed, 51), (std::array<int, 3>{255, 0, 0})) << "red at 0.2 (gray 51)";
+  EXPECT_NEAR(rgb(placed, 25)[0], 125, 2) << "half way up to it";
+  EXPECT_NEAR(rgb(placed, 153)[1], 128, 2) << "half way from red to white (gray 153)";
+  EXPECT_NEAR(rgb(even, 51)[0], 102, 2) << "evenly spaced, red is at 0.5";
+  EXPECT_EQ(rgb(placed, 255), (std::array<int, 3>{255, 255, 255}));
+  // Places that start above 0 and end below 1 hold the end colours beyond them.
+  const auto inner = candela::transfer_ramp(stops, 0, std::vector<float>{0.3f, 0.5f, 0.7f});
+  EXPECT_EQ(rgb(inner, 40), (std::array<int, 3>{0, 0, 0}));
+  EXPECT_EQ(rgb(inner, 240), (std::array<int, 3>{255, 255, 255}));
+  // Evenly placed: the plain ramp (within rounding).
+  const auto explicit_even = candela::transfer_ramp(stops, 0, std::vector<float>{0, 0.5f, 1});
+  for (size_t i = 0; i < even.size(); ++i) EXPECT_NEAR(explicit_even[i], even[i], 1) << i;
+
+  const auto desc = candela::load_scene_text(
+      "[[element]]\nkind = \"eigenflame\"\nmodel = \"builtin:fire\"\n"
+      "transfer = \"#000000@0 #ff0000@0.2 #ffffff@1\"\n",
+      "<placed>");
+  const auto* spec = dynamic_cast<const candela::EigenFlameSpec*>(desc.elements[0].spec.get());
+  ASSERT_NE(spec, nullptr);
+  ASSERT_EQ(spec->settings.transfer.size(), 3u);
+  EXPECT_EQ(spec->settings.transfer_at, places);
 }
 
 }  // namespace

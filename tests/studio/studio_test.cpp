@@ -5,16 +5,20 @@
 // broken model shows its error in the window.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/image.h"
+#include "story/story_file.h"
 
 namespace fs = std::filesystem;
 
@@ -432,6 +436,554 @@ TEST(Studio, AStoryPlaysItsPlannedFrames) {
   saved << in.rdbuf();
   EXPECT_NE(saved.str().find("story = \"builtin:fire-tour\"\n"), std::string::npos) << saved.str();
   EXPECT_EQ(saved.str().find("\nmodel = "), std::string::npos) << saved.str();
+}
+
+// ---------------------------------------------------------------------------
+// Weight edits saved as the element's keys (weight_offsets, detail_scale) and
+// played by `candela` headless.
+
+// A story that holds one stretch of the fire (frames 40-47): at speed 0.05 the
+// scene shows its first frame for the first 30 animation steps, the frame the
+// paused studio shows at timeline frame 0.
+std::string still_story() {
+  const std::string path = work("still.story.toml");
+  std::ofstream(path) << "model = \"builtin:fire\"\nseed = 3\nloop = true\n[[segment]]\n"
+                         "clip = \"fire-calm\"\nfrom = 40\nto = 48\n";
+  return path;
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The scene's text without the lines that start with `key = `.
+std::string without_key(std::string text, const std::string& key) {
+  for (size_t at; (at = text.find("\n" + key + " = ")) != std::string::npos;)
+    text.erase(at + 1, text.find('\n', at + 1) - at);
+  return text;
+}
+
+constexpr int kSceneW = 640, kSceneH = 480;
+
+// Renders a scene headless (its second frame) and returns it.
+candela::Image render_scene(const std::string& scene, const std::string& name) {
+  const std::string dir = work(name + ".frames");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const int rc = run(std::string(CANDELA_BIN) + " --display headless --scene " + scene +
+                     " --size " + std::to_string(kSceneW) + "x" + std::to_string(kSceneH) +
+                     " --frames 2 --mute --out " + dir);
+  EXPECT_EQ(rc, 0) << log_text();
+  return candela::read_png(dir + "/frame_000001.png", 3);
+}
+
+// Where the studio's saved scene draws the model's image (x y w h, pixels of
+// a kSceneW x kSceneH frame): its camera (position [0, 0.32, 1.7], target
+// [0, 0.3, 0], fov 40) looking at the upright billboard at the origin, 0.62 high.
+std::vector<double> scene_image_rect(double aspect) {
+  const double cx = 0, cy = 0.32, cz = 1.7, tx = 0, ty = 0.3, tz = 0, h = 0.62;
+  double fx = tx - cx, fy = ty - cy, fz = tz - cz;
+  const double fl = std::sqrt(fx * fx + fy * fy + fz * fz);
+  fx /= fl, fy /= fl, fz /= fl;
+  // right = f x up (0, 1, 0); u = right x f
+  double rx = -fz, ry = 0, rz = fx;
+  const double rl = std::sqrt(rx * rx + rz * rz);
+  rx /= rl, rz /= rl;
+  const double ux = ry * fz - rz * fy, uy = rz * fx - rx * fz, uz = rx * fy - ry * fx;
+  const double t = std::tan(20.0 * M_PI / 180.0), a = static_cast<double>(kSceneW) / kSceneH;
+  auto project = [&](double x, double y) {
+    const double dx = x - cx, dy = y - cy, dz = -cz;
+    const double xc = dx * rx + dy * ry + dz * rz, yc = dx * ux + dy * uy + dz * uz,
+                 zc = dx * fx + dy * fy + dz * fz;
+    return std::pair{(xc / (zc * t * a) + 1) / 2 * kSceneW, (1 - yc / (zc * t)) / 2 * kSceneH};
+  };
+  const auto [x0, y0] = project(-aspect * h / 2, h);
+  const auto [x1, y1] = project(aspect * h / 2, 0);
+  return {x0, y0, x1 - x0, y1 - y0};
+}
+
+// Mean |horizontal + vertical gray steps|: how much fine detail an image holds.
+double detail(const std::vector<double>& img, int w, int h) {
+  double s = 0;
+  for (int y = 0; y + 1 < h; ++y)
+    for (int x = 0; x + 1 < w; ++x) {
+      const double v = img[static_cast<size_t>(y) * w + x];
+      s += std::abs(img[static_cast<size_t>(y) * w + x + 1] - v) +
+           std::abs(img[static_cast<size_t>(y + 1) * w + x] - v);
+    }
+  return s / ((w - 1.0) * (h - 1.0));
+}
+
+struct EditComparison {
+  double studio_change, scene_change, change_correlation, image_correlation;
+  double studio_detail[2], scene_detail[2];  // before, after the edit
+};
+
+// The studio (paused on the still story, after `setup`) before and after
+// `edit`, saved as a scene; the scene rendered headless as saved and as
+// `unedit` makes it (default: without its weight keys); the change each
+// shows, on the model's pixel grid.
+EditComparison compare_edit(
+    const std::string& name, const std::string& edit, std::string* saved = nullptr,
+    const std::string& setup = "",
+    const std::function<std::string(const std::string&)>& unedit = [](const std::string& t) {
+      return without_key(without_key(t, "weight_offsets"), "detail_scale");
+    }) {
+  const std::string scene = work(name + ".toml");
+  fs::remove(scene);
+  EditComparison r{};
+  EXPECT_EQ(studio("builtin:fire " + still_story(), name,
+                   "pause\nframe 0\nspeed 0.05\n" + setup + "wait 2\ndump " + work(name + "0.txt") +
+                       "\nscreenshot " + work(name + "0.png") + "\n" + edit + "wait 2\ndump " +
+                       work(name + "1.txt") + "\nscreenshot " + work(name + "1.png") +
+                       "\nsave-scene " + scene + "\nquit\n"),
+            0)
+      << log_text();
+  EXPECT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + scene), 0) << log_text();
+  const std::string text = file_text(scene);
+  if (saved) *saved = text;
+  const std::string plain = work(name + "-plain.toml");
+  std::ofstream(plain) << unedit(text);
+
+  const auto d1 = read_dump(work(name + "1.txt"));
+  const auto rect = numbers(d1.at("flame_image"));
+  const int mw = 64, mh = static_cast<int>(std::lround(64 * rect[3] / rect[2]));
+  const auto s0 = region(candela::read_png(work(name + "0.png"), 3), rect, mw, mh);
+  const auto s1 = region(candela::read_png(work(name + "1.png"), 3), rect, mw, mh);
+  const auto srect = scene_image_rect(rect[2] / rect[3]);
+  const auto f0 = region(render_scene(plain, name + "-plain"), srect, mw, mh);
+  const auto f1 = region(render_scene(scene, name), srect, mw, mh);
+  const auto ds = minus(s1, s0), df = minus(f1, f0);
+  r.studio_change = mean_abs(ds);
+  r.scene_change = mean_abs(df);
+  r.change_correlation = correlation(ds, df);
+  r.image_correlation = correlation(s1, f1);
+  r.studio_detail[0] = detail(s0, mw, mh), r.studio_detail[1] = detail(s1, mw, mh);
+  r.scene_detail[0] = detail(f0, mw, mh), r.scene_detail[1] = detail(f1, mw, mh);
+  std::printf(
+      "%s: studio change %.2f, scene change %.2f (mean |luma| on a %dx%d grid), change "
+      "correlation %.3f, edited flames' correlation %.3f; detail studio %.2f -> %.2f, scene "
+      "%.2f -> %.2f\n",
+      name.c_str(), r.studio_change, r.scene_change, mw, mh, r.change_correlation,
+      r.image_correlation, r.studio_detail[0], r.studio_detail[1], r.scene_detail[0],
+      r.scene_detail[1]);
+  return r;
+}
+
+TEST(Studio, WeightEditsAreSavedAsKeysAndTheScenePlaysThem) {
+  std::string saved;
+  const auto r = compare_edit("wkeys", "set weight 1 -2.0\nset weight 4 2.5\n", &saved);
+  EXPECT_NE(saved.find("\nweight_offsets = [0.0, -2.0, 0.0, 0.0, 2.5]\n"), std::string::npos)
+      << saved;
+  EXPECT_EQ(saved.find("detail_scale"), std::string::npos) << "unchanged: not written";
+  EXPECT_EQ(saved.find("# studio weight edits"), std::string::npos) << "no longer a comment";
+  EXPECT_GT(r.studio_change, 2.0) << "the edit is visible";
+  EXPECT_GT(r.scene_change, 2.0) << "and the scene plays it";
+  EXPECT_GT(r.change_correlation, 0.8) << "where and as the studio showed it";
+  EXPECT_GT(r.scene_change / r.studio_change, 0.6);
+  EXPECT_LT(r.scene_change / r.studio_change, 1.6);
+  EXPECT_GT(r.image_correlation, 0.9) << "the edited flame is the studio's";
+}
+
+// The fire has 256 components: detail_scale = 0 drops the 206 from 50 on.
+TEST(Studio, DetailScaleOnTheFireIsSavedAndPlayed) {
+  std::string saved;
+  const auto r = compare_edit("wdetail", "set detail 0\n", &saved);
+  EXPECT_NE(saved.find("\ndetail_scale = 0.0\n"), std::string::npos) << saved;
+  EXPECT_EQ(saved.find("weight_offsets"), std::string::npos) << "no offsets: not written";
+  EXPECT_LT(r.studio_detail[1], 0.9 * r.studio_detail[0]) << "a smoother flame in the studio";
+  EXPECT_LT(r.scene_detail[1], 0.9 * r.scene_detail[0]) << "and in the scene";
+  EXPECT_GT(r.change_correlation, 0.7) << "the same detail removed";
+  EXPECT_GT(r.scene_change / r.studio_change, 0.5);
+  EXPECT_LT(r.scene_change / r.studio_change, 2.0);
+}
+
+// The colour panel's "hue at top" (the element's hue_top): a higher top hue
+// turns the bright body yellower; saved as the key; undo takes it back.
+TEST(Studio, HueTopMakesTheBrightBodyYellowerAndIsSaved) {
+  const std::string scene = work("huetop.toml");
+  fs::remove(scene);
+  ASSERT_EQ(studio(kFire, "huetop",
+                   "pause\nframe 40\nset hue 20\nwait 2\ndump " + work("h0.txt") + "\nscreenshot " +
+                       work("h0.png") + "\nset hue_top 55\nwait 2\ndump " + work("h1.txt") +
+                       "\nscreenshot " + work("h1.png") + "\nsave-scene " + scene +
+                       "\nundo\nwait 2\ndump " + work("h2.txt") + "\nscreenshot " + work("h2.png") +
+                       "\nquit\n"),
+            0)
+      << log_text();
+  const auto rect = numbers(read_dump(work("h0.txt")).at("flame_image"));
+  const auto img0 = candela::read_png(work("h0.png"), 3),
+             img1 = candela::read_png(work("h1.png"), 3);
+  // The mean hue (HSV, degrees) where the flame is bright (luma over 100) and
+  // still coloured (not the white core): its body.
+  auto body = [&](const candela::Image& img) {
+    double sum = 0;
+    int n = 0;
+    for (int y = static_cast<int>(rect[1]); y < rect[1] + rect[3]; ++y)
+      for (int x = static_cast<int>(rect[0]); x < rect[0] + rect[2]; ++x) {
+        const double r = img.at(x, y, 0), g = img.at(x, y, 1), b = img.at(x, y, 2);
+        const double hi = std::max({r, g, b}), lo = std::min({r, g, b});
+        if (luma(img, x, y) <= 100 || hi - lo <= 20 || hi != r) continue;  // red-led hues only
+        sum += 60 * (g - b) / (hi - lo), ++n;
+      }
+    return n > 0 ? sum / n : -1;
+  };
+  const double before = body(img0), after = body(img1);
+  const double undone = body(candela::read_png(work("h2.png"), 3));
+  std::printf(
+      "mean hue of the bright body: hue_top = hue %.1f deg, hue_top 55 %.1f deg, "
+      "undone %.1f deg\n",
+      before, after, undone);
+  EXPECT_NEAR(before, 20, 3) << "the hue throughout";
+  EXPECT_GT(after, before + 8) << "a yellower body";
+  EXPECT_NEAR(undone, before, 0.1) << "undo takes it back";
+  EXPECT_EQ(read_dump(work("h1.txt")).at("hue_top"), "55");
+  EXPECT_EQ(read_dump(work("h2.txt")).at("hue_top"), "20") << "undone: the hue throughout";
+  ASSERT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + scene), 0) << log_text();
+  const std::string saved = file_text(scene);
+  EXPECT_NE(saved.find("\nhue = 20.0\nhue_top = 55.0\n"), std::string::npos) << saved;
+}
+
+// Transfer-function stops moved to chosen places: the flame changes in the
+// studio, the scene keeps the places ("#rrggbb@PLACE") and plays the same
+// change; a stop stays between its neighbours; undo takes back one move at a time.
+TEST(Studio, TransferStopsAtChosenPlacesAreSavedAndPlayed) {
+  std::string saved;
+  const std::string stops = "#000000 #a00000 #ff2000 #ffd0d0";
+  const auto r = compare_edit("tplace", "set stop 1 0.08\nset stop 2 0.35\n", &saved,
+                              "set transfer " + stops + "\n", [&](const std::string& t) {
+                                const size_t at = t.find("\ntransfer = ");
+                                return t.substr(0, at) + "\ntransfer = \"" + stops + "\"\n" +
+                                       t.substr(t.find('\n', at + 1) + 1);
+                              });
+  EXPECT_NE(saved.find("\ntransfer = \"#000000@0.0 #a00000@0.08 #ff2000@0.35 #ffd0d0@1.0\""),
+            std::string::npos)
+      << saved;
+  EXPECT_GT(r.studio_change, 3.0) << "stops lower on the ramp: a brighter flame";
+  EXPECT_GT(r.change_correlation, 0.9) << "the scene plays the same ramp";
+  EXPECT_GT(r.scene_change / r.studio_change, 0.7);
+  EXPECT_LT(r.scene_change / r.studio_change, 1.4);
+  EXPECT_EQ(read_dump(work("tplace1.txt")).at("transfer_at"), "0 0.08 0.35 1");
+  ASSERT_EQ(studio("builtin:fire", "tundo",
+                   "set transfer " + stops + "\nset stop 1 0.08\nset stop 1 0.9\ndump " +
+                       work("tu0.txt") + "\nundo\ndump " + work("tu1.txt") + "\nundo\ndump " +
+                       work("tu2.txt") + "\nquit\n"),
+            0)
+      << log_text();
+  EXPECT_EQ(read_dump(work("tu0.txt")).at("transfer_at"), "0 0.666667 0.666667 1")
+      << "stop 1 stops at stop 2";
+  EXPECT_EQ(read_dump(work("tu1.txt")).at("transfer_at"), "0 0.08 0.666667 1");
+  EXPECT_EQ(read_dump(work("tu2.txt")).at("transfer_at"), "0 0.333333 0.666667 1");
+}
+
+// A stop's place handle dragged with real X input (press on it, move, release).
+TEST(Studio, DraggingAStopsPlaceHandleMovesIt) {
+  const std::string stops = "#000000 #a00000 #ff2000 #ffd0d0";
+  ASSERT_EQ(
+      studio("builtin:fire", "tdrag0",
+             "pause\nset transfer " + stops + "\nwait 2\ndump " + work("td0.txt") + "\nquit\n"),
+      0)
+      << log_text();
+  const auto row = numbers(read_dump(work("td0.txt")).at("transfer_places"));
+  ASSERT_EQ(row.size(), 4u);
+  ASSERT_GT(row[2], 100) << "the row of handles is shown";
+  auto at = [&](double place) {
+    return std::to_string(static_cast<int>(std::lround(row[0] + row[2] * place))) + " " +
+           std::to_string(static_cast<int>(std::lround(row[1] + row[3] / 2)));
+  };
+  // Stop 1 (at 1/3) dragged to 0.15, in steps, and let go; then stop 2 (at
+  // 2/3) dragged far left: it stops at stop 1.
+  std::string s = "pause\nset transfer " + stops + "\nwait 2\nx-move " + at(1.0 / 3) +
+                  "\nwait 1\nx-press " + at(1.0 / 3) + "\nwait 1\n";
+  for (double p : {0.28, 0.22, 0.15}) s += "x-move " + at(p) + "\nwait 1\n";
+  s += "x-release " + at(0.15) + "\nwait 1\ndump " + work("td1.txt") + "\nx-move " + at(2.0 / 3) +
+       "\nwait 1\nx-press " + at(2.0 / 3) + "\nwait 1\nx-move " + at(0.4) + "\nwait 1\nx-move " +
+       at(0.02) + "\nwait 1\nx-release " + at(0.02) + "\nwait 1\ndump " + work("td2.txt") +
+       "\nquit\n";
+  ASSERT_EQ(studio("builtin:fire", "tdrag", s), 0) << log_text();
+  const auto p1 = numbers(read_dump(work("td1.txt")).at("transfer_at"));
+  const auto p2 = numbers(read_dump(work("td2.txt")).at("transfer_at"));
+  ASSERT_EQ(p1.size(), 4u);
+  ASSERT_EQ(p2.size(), 4u);
+  EXPECT_NEAR(p1[1], 0.15, 1.0 / row[2] + 1e-3) << "stop 1 where it was let go";
+  EXPECT_NEAR(p1[2], 2.0 / 3, 1e-5) << "the others stay";
+  EXPECT_NEAR(p2[2], p1[1], 1e-6) << "stop 2 stops at stop 1";
+  EXPECT_EQ(read_dump(work("td2.txt")).at("undo_depth"), "3") << "set transfer and two drags";
+}
+
+// A report is shown fitted to the controls' width; hovering it shows it at
+// its own size (the plots' text is a small bitmap font).
+TEST(Studio, HoveringAReportShowsItFullSize) {
+  const std::string model = work("wide.cmodel"), folder = model + ".report";
+  fs::copy_file(kFire, model, fs::copy_options::overwrite_existing);
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  candela::Image img;
+  img.width = 600;
+  img.height = 200;
+  img.channels = 3;
+  img.pixels.resize(600 * 200 * 3);
+  for (size_t p = 0; p < img.pixels.size(); p += 3)
+    img.pixels[p] = 40, img.pixels[p + 1] = 200, img.pixels[p + 2] = 120;
+  candela::write_png(folder + "/trajectory.png", img);
+  auto shown = [](const candela::Image& shot, int* cx = nullptr, int* cy = nullptr) {
+    int n = 0;
+    long sx = 0, sy = 0;
+    for (int y = 0; y < shot.height; ++y)
+      for (int x = 0; x < shot.width; ++x)
+        if (shot.at(x, y, 0) == 40 && shot.at(x, y, 1) == 200 && shot.at(x, y, 2) == 120)
+          ++n, sx += x, sy += y;
+    if (cx && n) *cx = static_cast<int>(sx / n), *cy = static_cast<int>(sy / n);
+    return n;
+  };
+  ASSERT_EQ(studio(model, "hover0",
+                   "pause\nshow reports\nwait 3\nscreenshot " + work("hv0.png") + "\nquit\n"),
+            0)
+      << log_text();
+  int cx = 0, cy = 0;
+  const int fitted = shown(candela::read_png(work("hv0.png"), 3), &cx, &cy);
+  ASSERT_GT(fitted, 5000) << "the report, fitted";
+  const std::string at = std::to_string(cx) + " " + std::to_string(cy);
+  ASSERT_EQ(studio(model, "hover1",
+                   "pause\nshow reports\nwait 3\nx-move " + at + "\nwait 3\nscreenshot " +
+                       work("hv1.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto hovered = candela::read_png(work("hv1.png"), 3);
+  const int full = shown(hovered);
+  // The widest row of the report's colour: the fitted image is at most the
+  // controls' width (360), the full-size one 600.
+  int widest = 0;
+  for (int y = 0; y < hovered.height; ++y)
+    for (int x = 0, run = 0; x < hovered.width; ++x) {
+      const bool on =
+          hovered.at(x, y, 0) == 40 && hovered.at(x, y, 1) == 200 && hovered.at(x, y, 2) == 120;
+      run = on ? run + 1 : 0;
+      widest = std::max(widest, run);
+    }
+  std::printf("report pixels: fitted %d, hovered %d (600x200 = 120000), widest row %d\n", fitted,
+              full, widest);
+  EXPECT_GE(widest, 600) << "shown at its own size";
+  EXPECT_GT(full, fitted + 100000);
+}
+
+// ---------------------------------------------------------------------------
+// The story timeline: joints edited, segments added, removed and moved, each
+// edit re-planned by the runtime's planner; saved stories read back.
+
+const std::string kTour = "builtin:fire builtin:fire-tour";
+
+std::string text_of(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(Studio, AJointsMethodIsSavedAndTheStoryPassesItsSeamCheck) {
+  const std::string story = work("edited-story.toml"), scene = work("edited-story-scene.toml");
+  ASSERT_EQ(studio(kTour, "joint",
+                   "pause\nstory method 2 bridge\nstory set 2 steps 4\nstory method 1 grow\n"
+                   "story set 1 theta_min 900\nsave-story " +
+                       story + "\nsave-scene " + scene + "\nquit\n"),
+            0)
+      << log_text();
+  // The story reader reads it back with the chosen methods and parameters.
+  const candela::story::StoryDesc d = candela::story::load_story_file(story);
+  ASSERT_EQ(d.segments.size(), 4u);
+  EXPECT_EQ(d.segments[2].transition.method, candela::story::Method::kBridge);
+  EXPECT_EQ(d.segments[2].transition.steps, 4);
+  EXPECT_EQ(d.segments[1].transition.method, candela::story::Method::kGrow);
+  EXPECT_FLOAT_EQ(d.segments[1].transition.theta_min, 900);
+  EXPECT_EQ(d.segments[1].repeat, 2);
+  EXPECT_EQ(d.segments[3].kind, candela::story::SegmentKind::kWalk);
+  EXPECT_EQ(d.seed, 17u);
+  // The tool plans it and every joint passes the seam bound (exit 3 otherwise).
+  ASSERT_EQ(run(std::string(CANDELA_TOOL) + " story " + story + " --no-render"), 0) << log_text();
+  EXPECT_NE(log_text().find("joint segment[1] -> segment[2]             bridge"), std::string::npos)
+      << log_text();
+  // A scene saved after it plays the saved story, and candela --check accepts it.
+  EXPECT_NE(text_of(scene).find("story = \"" + story + "\""), std::string::npos) << text_of(scene);
+  ASSERT_EQ(run(std::string(CANDELA_BIN) + " --check --scene " + scene), 0) << log_text();
+}
+
+TEST(Studio, AddingDeletingAndMovingSegmentsReplansTheStory) {
+  // Every joint a cut: the story is exactly its segments' frames
+  // (120 + 2 x 150 + 120 + 6 s of walk at 30 fps = 720).
+  const std::string cuts =
+      "pause\nstory method 0 cut\nstory method 1 cut\nstory method 2 cut\nstory method 3 cut\n";
+  const std::string saved = work("moved-story.toml");
+  ASSERT_EQ(studio(kTour, "segments",
+                   cuts + "dump " + work("s0.txt") + "\nstory add clip fire-calm 0 60\n" +
+                       "story method 4 cut\ndump " + work("s1.txt") + "\nstory delete 3\ndump " +
+                       work("s2.txt") + "\nstory move 2 right\ndump " + work("s3.txt") +
+                       "\nsave-story " + saved + "\nquit\n"),
+            0)
+      << log_text();
+  auto frames = [](const std::string& f) { return std::stoi(read_dump(work(f)).at("frames")); };
+  EXPECT_EQ(frames("s0.txt"), 720);
+  EXPECT_EQ(frames("s1.txt"), 780) << "a 60-frame segment added";
+  EXPECT_EQ(frames("s2.txt"), 600) << "the 6 s walk (180 frames) deleted";
+  EXPECT_EQ(frames("s3.txt"), 600) << "a move keeps the frames";
+  EXPECT_EQ(read_dump(work("s3.txt")).at("story_segments"), "4");
+  const candela::story::StoryDesc d = candela::story::load_story_file(saved);
+  ASSERT_EQ(d.segments.size(), 4u);
+  EXPECT_EQ(d.segments[2].to, 60) << "the added segment moved left of the last T1";
+  EXPECT_EQ(d.segments[3].to, 120);
+  // The tool plans the saved story to the studio's frame count.
+  ASSERT_EQ(run(std::string(CANDELA_TOOL) + " story " + saved + " --no-render --max-seam 100"), 0)
+      << log_text();
+  EXPECT_NE(log_text().find(": 600 frames"), std::string::npos) << log_text();
+}
+
+TEST(Studio, PreviewJointPlaysFromJustBeforeTheJoint) {
+  ASSERT_EQ(studio(kTour, "preview",
+                   "pause\nframe 5\npreview joint 2\ndump " + work("p0.txt") + "\nwait 150\ndump " +
+                       work("p1.txt") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d0 = read_dump(work("p0.txt")), d1 = read_dump(work("p1.txt"));
+  const int joint = static_cast<int>(numbers(d0.at("story_joint_frames"))[2]);
+  const int at = std::stoi(d0.at("frame"));
+  EXPECT_LT(at, joint);
+  EXPECT_GE(at, joint - 61) << "about two seconds (30 fps) before it";
+  EXPECT_EQ(d0.at("playing"), "1");
+  EXPECT_GT(std::stoi(d1.at("frame")), joint) << "and it plays through the joint";
+}
+
+TEST(Studio, UndoRestoresThePreviousStory) {
+  const std::string saved = work("undone-story.toml");
+  ASSERT_EQ(studio(kTour, "story-undo",
+                   "pause\ndump " + work("u0.txt") + "\nstory method 1 cut\nstory delete 3\ndump " +
+                       work("u1.txt") + "\nundo\nundo\ndump " + work("u2.txt") + "\nsave-story " +
+                       saved + "\nquit\n"),
+            0)
+      << log_text();
+  const auto u0 = read_dump(work("u0.txt")), u1 = read_dump(work("u1.txt")),
+             u2 = read_dump(work("u2.txt"));
+  EXPECT_NE(u1.at("frames"), u0.at("frames"));
+  EXPECT_EQ(u1.at("story_segments"), "3");
+  EXPECT_EQ(u2.at("frames"), u0.at("frames"));
+  EXPECT_EQ(u2.at("story_segments"), "4");
+  EXPECT_EQ(u2.at("story_seams"), u0.at("story_seams"));
+  const candela::story::StoryDesc d = candela::story::load_story_file(saved);
+  EXPECT_EQ(d.segments[1].transition.method, candela::story::Method::kBridge);
+}
+
+TEST(Studio, ANewStoryFromTheModelsClipsIsSavedAndPlays) {
+  const std::string saved = work("new-story.toml");
+  ASSERT_EQ(studio(kFire, "new-story",
+                   "pause\ndump " + work("n0.txt") + "\nstory new\nstory add walk 2\ndump " +
+                       work("n1.txt") + "\nsave-story " + saved + "\nundo\nundo\ndump " +
+                       work("n2.txt") + "\nquit\n"),
+            0)
+      << log_text();
+  EXPECT_EQ(read_dump(work("n0.txt")).at("story_segments"), "0");
+  EXPECT_EQ(read_dump(work("n1.txt")).at("story_segments"), "2");
+  const auto n2 = read_dump(work("n2.txt"));
+  EXPECT_EQ(n2.at("story_segments"), "0") << "undone back to no story";
+  EXPECT_EQ(n2.at("frames"), "300") << "the model's own frames again";
+  const candela::story::StoryDesc d = candela::story::load_story_file(saved);
+  ASSERT_EQ(d.segments.size(), 2u);
+  EXPECT_EQ(d.segments[0].clip, "fire-calm");
+  EXPECT_EQ(d.model, fs::absolute(kFire).lexically_normal().string());
+  ASSERT_EQ(run(std::string(CANDELA_TOOL) + " story " + saved + " --no-render"), 0) << log_text();
+}
+
+TEST(Studio, TheTimelineShowsSegmentsAsWideAsTheirFrames) {
+  // All cuts: 720 frames, segment 0 the first 120, segment 1 the next 300.
+  ASSERT_EQ(studio(kTour, "timeline",
+                   "pause\nstory method 0 cut\nstory method 1 cut\nstory method 2 cut\n"
+                   "story method 3 cut\nframe 540\nwait 2\ndump " +
+                       work("tl.txt") + "\nscreenshot " + work("tl.png") + "\nquit\n"),
+            0)
+      << log_text();
+  const auto d = read_dump(work("tl.txt"));
+  const auto r = numbers(d.at("timeline"));
+  ASSERT_EQ(r.size(), 4u);
+  ASSERT_GT(r[2], 300);
+  const auto img = candela::read_png(work("tl.png"), 3);
+  const int y = static_cast<int>(r[1] + 25);  // inside the blocks, under their labels
+  auto colour = [&](double x) {
+    const int xi = static_cast<int>(x);
+    return std::array<int, 3>{img.at(xi, y, 0), img.at(xi, y, 1), img.at(xi, y, 2)};
+  };
+  auto at_frame = [&](double f) { return r[0] + r[2] * f / 720; };
+  // A block's colour changes where the segment does and not inside it.
+  EXPECT_EQ(colour(at_frame(30)), colour(at_frame(100)));
+  EXPECT_NE(colour(at_frame(100)), colour(at_frame(200)));
+  EXPECT_EQ(colour(at_frame(200)), colour(at_frame(400)));  // both repeats of segment 1
+  EXPECT_NE(colour(at_frame(400)), colour(at_frame(470)));
+  // The play position: a white line at frame 540 of 720.
+  int whitest = -1, best = 0;
+  for (int x = static_cast<int>(r[0]); x < static_cast<int>(r[0] + r[2]); ++x) {
+    const auto c = colour(x);
+    if (c[0] + c[1] + c[2] > best) best = c[0] + c[1] + c[2], whitest = x;
+  }
+  EXPECT_EQ(best, 3 * 255);
+  EXPECT_NEAR(whitest, at_frame(540), 3);
+  EXPECT_EQ(d.at("story_selected"), "0");
+}
+
+TEST(Studio, ClickingATimelineBlockSelectsItsSegment) {
+  ASSERT_EQ(studio(kTour, "tl-rect", "pause\nwait 2\ndump " + work("tr.txt") + "\nquit\n"), 0)
+      << log_text();
+  const auto r = numbers(read_dump(work("tr.txt")).at("timeline"));
+  ASSERT_EQ(r.size(), 4u);
+  const auto joints = numbers(read_dump(work("tr.txt")).at("story_joint_frames"));
+  const int frames = std::stoi(read_dump(work("tr.txt")).at("frames"));
+  // The middle of segment 3 (the walk): between its joint and the loop joint.
+  const double f = (joints[3] + frames) / 2;
+  const std::string at = std::to_string(static_cast<int>(r[0] + r[2] * f / frames)) + " " +
+                         std::to_string(static_cast<int>(r[1] + 20));
+  ASSERT_EQ(
+      studio(kTour, "tl-click",
+             "pause\nwait 2\nx-move " + at + "\nwait 1\nx-press " + at + "\nwait 1\nx-release " +
+                 at + "\nwait 2\ndump " + work("tc.txt") + "\nquit\n"),
+      0)
+      << log_text();
+  EXPECT_EQ(read_dump(work("tc.txt")).at("story_selected"), "3");
+}
+
+TEST(Studio, TypingAJointsStepsIsOneUndoStep) {
+  // Segment 0 (selected) is entered by grow, steps = 20: its steps field is shown.
+  ASSERT_EQ(studio(kTour, "steps-rect", "pause\nwait 2\ndump " + work("sr.txt") + "\nquit\n"), 0)
+      << log_text();
+  const auto r = numbers(read_dump(work("sr.txt")).at("joint_steps"));
+  ASSERT_EQ(r.size(), 4u);
+  ASSERT_GT(r[2], 0);
+  const std::string field = std::to_string(static_cast<int>(r[0] + 8)) + " " +
+                            std::to_string(static_cast<int>(r[1] + r[3] / 2));
+  const std::string away = std::to_string(static_cast<int>(r[0])) + " 5";  // the flame pane
+  const std::string saved = work("typed-story.toml");
+  // Click into the field (it selects its text), type 3 then 7, click away.
+  ASSERT_EQ(studio(kTour, "steps-type",
+                   "pause\nwait 2\nx-move " + field + "\nwait 1\nx-press " + field +
+                       "\nwait 1\nx-release " + field + "\nwait 2\nx-key 3\nwait 2\nx-key 7\n" +
+                       "wait 2\nx-move " + away + "\nwait 1\nx-press " + away +
+                       "\nwait 1\nx-release " + away + "\nwait 2\ndump " + work("st1.txt") +
+                       "\nsave-story " + saved + "\nundo\ndump " + work("st2.txt") +
+                       "\nsave-story " + work("typed-undone.toml") + "\nquit\n"),
+            0)
+      << log_text();
+  EXPECT_EQ(candela::story::load_story_file(saved).segments[0].transition.steps, 37);
+  EXPECT_EQ(read_dump(work("st1.txt")).at("undo_depth"), "1") << "one step for the typing";
+  EXPECT_EQ(candela::story::load_story_file(work("typed-undone.toml")).segments[0].transition.steps,
+            20)
+      << "one undo takes all of it back";
+}
+
+TEST(Studio, AStoryEditTheReaderRefusesIsNotMadeAndSaysWhy) {
+  // As in the UI (where the message shows under the timeline), the script stops naming it.
+  EXPECT_EQ(studio(kTour, "refused", "pause\nstory set 1 steps 500\nquit\n"), 2) << log_text();
+  EXPECT_NE(
+      log_text().find("refused.script:2: story set: <studio story>: "
+                      "segment[1].transition.steps: expected an integer in [0, 200], got 500"),
+      std::string::npos)
+      << log_text();
 }
 
 }  // namespace

@@ -265,95 +265,187 @@ void write_reports(const Dataset& d, const BuiltModel& m, const std::string& dir
     }
   }
   {
-    // PSNR versus log2(E): train in red, held-out in blue.
-    const int W = 480, H = 320, L = 40, B = 30;
+    // PSNR versus log2(E): train in red, held-out in blue; axes with their
+    // ticks and titles, a legend and a title.
+    const int W = 560, H = 380, L = 64, R = 16, T = 40, B = 52;
+    const std::array<uint8_t, 3> ink{0, 0, 0}, grid{220, 220, 220}, train{220, 50, 32},
+        held{30, 120, 200};
     Canvas c(W, H);
-    c.line(L, H - B, W - 10, H - B, {0, 0, 0});
-    c.line(L, 10, L, H - B, {0, 0, 0});
+    const std::string title = "Reconstruction PSNR vs components";
+    c.text((W - Canvas::text_width(title, 2)) / 2, 10, title, ink, 2);
     double lo = 1e9, hi = -1e9;
-    for (const auto& r : m.psnr) {
-      lo = std::min({lo, r.train_db, m.holdout.empty() ? r.train_db : r.holdout_db});
-      hi = std::max({hi, r.train_db, r.holdout_db});
-    }
-    lo = std::floor(lo / 5) * 5;
-    hi = std::ceil(hi / 5) * 5 + 1e-9;
-    for (double db = lo; db <= hi; db += 5) {
-      const double y = (H - B) - (db - lo) / (hi - lo) * (H - B - 10);
-      c.line(L - 5, y, W - 10, y, {220, 220, 220});
-    }
-    const double xmax = std::log2(std::max(2, m.psnr.back().components));
-    auto X = [&](int e) { return L + std::log2(e) / xmax * (W - L - 20); };
-    auto Y = [&](double db) { return (H - B) - (db - lo) / (hi - lo) * (H - B - 10); };
-    for (size_t i = 0; i + 1 < m.psnr.size(); ++i) {
-      c.line(X(m.psnr[i].components), Y(m.psnr[i].train_db), X(m.psnr[i + 1].components),
-             Y(m.psnr[i + 1].train_db), {220, 50, 32});
-      if (!m.holdout.empty())
-        c.line(X(m.psnr[i].components), Y(m.psnr[i].holdout_db), X(m.psnr[i + 1].components),
-               Y(m.psnr[i + 1].holdout_db), {30, 120, 200});
-    }
     for (const auto& r : m.psnr)
-      c.rect(static_cast<int>(X(r.components)) - 2, H - B, static_cast<int>(X(r.components)) + 2,
-             H - B + 6, {0, 0, 0});
+      for (double db : {r.train_db, m.holdout.empty() ? r.train_db : r.holdout_db})
+        if (std::isfinite(db)) lo = std::min(lo, db), hi = std::max(hi, db);  // exact: +inf
+    if (lo > hi) lo = hi = 0;
+    lo = std::floor(lo / 5) * 5;
+    hi = std::clamp(std::ceil(hi / 5) * 5, lo + 5, lo + 200);
+    const double xmax = std::log2(std::max(2, m.psnr.back().components));
+    auto X = [&](int e) { return L + std::log2(e) / xmax * (W - L - R - 10); };
+    auto Y = [&](double db) {
+      db = std::isfinite(db) ? std::clamp(db, lo, hi) : hi;  // a perfect fit (+inf) at the top
+      return (H - B) - (db - lo) / (hi - lo) * (H - B - T);
+    };
+    for (int db = static_cast<int>(lo); db <= hi + 1e-9; db += 5) {
+      const int y = static_cast<int>(std::lround(Y(db)));
+      if (db > lo) c.line(L + 1, y, W - R, y, grid);
+      c.line(L - 5, y, L, y, ink);
+      const std::string label = std::to_string(db);
+      c.text(L - 8 - Canvas::text_width(label), y - 3, label, ink);
+    }
+    const std::string ytitle = "PSNR (dB, peak 255)";
+    c.text_up(8, (H - B + T) / 2 + Canvas::text_width(ytitle) / 2, ytitle, ink);
+    int last_label_end = -1000;
+    for (const auto& r : m.psnr) {
+      const int x = static_cast<int>(std::lround(X(r.components)));
+      c.line(x, H - B, x, H - B + 5, ink);
+      const std::string label = std::to_string(r.components);
+      const int lx = x - Canvas::text_width(label) / 2;
+      if (lx > last_label_end + 4) {  // crowded ticks (a long sweep): every other label
+        c.text(lx, H - B + 9, label, ink);
+        last_label_end = lx + Canvas::text_width(label);
+      }
+    }
+    const std::string xtitle = "components E (log scale)";
+    c.text((L + W - R - Canvas::text_width(xtitle)) / 2, H - 18, xtitle, ink);
+    auto series = [&](auto value, std::array<uint8_t, 3> col) {
+      for (size_t i = 0; i + 1 < m.psnr.size(); ++i)
+        for (int d = 0; d < 2; ++d)  // two pixels thick
+          c.line(X(m.psnr[i].components), Y(value(m.psnr[i])) + d, X(m.psnr[i + 1].components),
+                 Y(value(m.psnr[i + 1])) + d, col);
+      for (const auto& r : m.psnr) {
+        const int x = static_cast<int>(std::lround(X(r.components)));
+        const int y = static_cast<int>(std::lround(Y(value(r))));
+        c.rect(x - 2, y - 2, x + 3, y + 3, col);
+      }
+    };
+    series([](const PsnrRow& r) { return r.train_db; }, train);
+    if (!m.holdout.empty()) series([](const PsnrRow& r) { return r.holdout_db; }, held);
+    c.line(L, T - 6, L, H - B, ink);
+    c.line(L, H - B, W - R, H - B, ink);
+    // The legend, bottom right inside the plot (PSNR rises to the right).
+    const std::vector<std::pair<std::string, std::array<uint8_t, 3>>> entries =
+        m.holdout.empty()
+            ? std::vector<std::pair<std::string, std::array<uint8_t, 3>>>{{"train", train}}
+            : std::vector<std::pair<std::string, std::array<uint8_t, 3>>>{
+                  {"train", train}, {"held-out frames", held}};
+    const int lw = 14 + 6 + Canvas::text_width("held-out frames") + 12,
+              lh = 8 + 14 * static_cast<int>(entries.size());
+    const int lx = W - R - lw - 8, ly = H - B - lh - 8;
+    c.rect(lx, ly, lx + lw, ly + lh, {150, 150, 150});
+    c.rect(lx + 1, ly + 1, lx + lw - 1, ly + lh - 1, {255, 255, 255});
+    for (size_t i = 0; i < entries.size(); ++i) {
+      const int ey = ly + 5 + 14 * static_cast<int>(i);
+      c.rect(lx + 6, ey, lx + 20, ey + 8, entries[i].second);
+      c.text(lx + 26, ey, entries[i].first, ink);
+    }
     write_png(dir + "/psnr.png", c.img);
   }
   {
-    // Contact sheet: the mean, then eigen-images (mid-gray = 0).
+    // Contact sheet: the mean, then eigen-images (mid-gray = 0), each with its
+    // component number above it (the studio's w0, w1, ...), under a title.
     const int cols = 6, show = std::min(p.components(), 17);
     const int w = p.width, h = p.height, rows = (show + 1 + cols - 1) / cols;
-    Canvas c(cols * (w + 2), rows * (h + 2), {0, 0, 0});
+    const int zoom = std::max(1, (40 + w - 1) / w);  // small models drawn larger
+    const int cw = w * zoom + 4, ch = h * zoom + 14, top = 24;
+    const std::string title =
+        "Mean and eigen-images 0-" + std::to_string(show - 1) + " (mid-gray = 0)";
+    const int sheet_w = std::max(cols * cw, Canvas::text_width(title) + 8);
+    Canvas c(sheet_w, top + rows * ch, {0, 0, 0});
+    c.text(4, 8, title, {255, 255, 255});
     for (int i = 0; i <= show; ++i) {
-      const int ox = (i % cols) * (w + 2), oy = (i / cols) * (h + 2);
+      const int ox = (i % cols) * cw + 2, oy = top + (i / cols) * ch;
+      c.text(ox, oy + 2, i == 0 ? std::string("mean") : std::to_string(i - 1), {255, 220, 120});
+      const float peak = i == 0 ? 1.0f : p.basis.col(i - 1).cwiseAbs().maxCoeff();
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
           const size_t at = static_cast<size_t>(y) * w + x;
-          float v;
-          if (i == 0) {
-            v = p.mean[at];
-          } else {
-            const float peak = p.basis.col(i - 1).cwiseAbs().maxCoeff();
-            v = 127.5f +
-                127.5f * p.basis(static_cast<Eigen::Index>(at), i - 1) / std::max(peak, 1e-12f);
-          }
+          const float v = i == 0 ? p.mean[at]
+                                 : 127.5f + 127.5f * p.basis(static_cast<Eigen::Index>(at), i - 1) /
+                                                std::max(peak, 1e-12f);
           const auto g = static_cast<uint8_t>(std::clamp(std::lround(v), 0l, 255l));
-          c.dot(ox + x, oy + y, {g, g, g});
+          c.rect(ox + x * zoom, oy + 11 + y * zoom, ox + (x + 1) * zoom, oy + 11 + (y + 1) * zoom,
+                 {g, g, g});
         }
     }
     write_png(dir + "/eigenfires.png", c.img);
   }
   if (p.components() >= 3) {
-    // First three weights, fixed oblique view, one colour per clip; axes red/green/blue.
-    const int S = 480;
-    Canvas c(S, S);
-    const double yaw = 0.6, pitch = 0.45;
+    // The first three weights from three viewpoints (oblique, from above,
+    // from the front), one colour per clip, the axes w0 red, w1 green, w2
+    // blue and named at their tips; a legend of the clips and a title.
+    const int S = 400, top = 30;
+    const std::array<uint8_t, 3> ink{0, 0, 0};
     double scale = 0;
     for (int k = 0; k < 3; ++k)
       scale = std::max<double>(scale, p.weights.col(k).cwiseAbs().maxCoeff());
-    auto proj = [&](double a, double b, double z) {
-      const double x1 = a * std::cos(yaw) - b * std::sin(yaw);
-      const double y1 = a * std::sin(yaw) + b * std::cos(yaw);
-      const double y2 = y1 * std::sin(pitch) + z * std::cos(pitch);
-      return std::pair<double, double>{S / 2 + 0.42 * S * x1 / scale,
-                                       S / 2 - 0.42 * S * y2 / scale};
-    };
-    const std::array<uint8_t, 3> axis[3] = {{255, 0, 0}, {0, 180, 0}, {0, 0, 255}};
-    for (int k = 0; k < 3; ++k) {
-      double v[3] = {0, 0, 0};
-      v[k] = scale;
-      auto [x0, y0] = proj(0, 0, 0);
-      auto [x1, y1] = proj(v[0], v[1], v[2]);
-      c.line(x0, y0, x1, y1, axis[k]);
+    scale = std::max(scale, 1e-12);
+    // The legend's rows: a swatch and the clip's name each, wrapped to the width.
+    const int W = 3 * S;
+    std::vector<std::pair<int, int>> at_of(d.clips.size());
+    int lx = 10, ly = top + S + 12;
+    for (size_t i = 0; i < d.clips.size(); ++i) {
+      const int ew = 20 + Canvas::text_width(d.clips[i].name) + 18;
+      if (lx > 10 && lx + ew > W - 10) lx = 10, ly += 16;
+      at_of[i] = {lx, ly};
+      lx += ew;
     }
-    for (int f = 0; f + 1 < d.frames(); ++f) {
-      const int clip = [&] {
-        for (size_t i = 0; i < d.clips.size(); ++i)
-          if (f >= d.clips[i].first && f < d.clips[i].first + d.clips[i].count)
-            return static_cast<int>(i);
-        return 0;
-      }();
-      if (f + 1 >= d.clips[clip].first + d.clips[clip].count) continue;
-      auto [x0, y0] = proj(p.weights(f, 0), p.weights(f, 1), p.weights(f, 2));
-      auto [x1, y1] = proj(p.weights(f + 1, 0), p.weights(f + 1, 1), p.weights(f + 1, 2));
-      c.line(x0, y0, x1, y1, palette(clip + 3));
+    Canvas c(W, ly + 22);
+    const std::string title = "First three weights (w0, w1, w2): one track per clip";
+    c.text((W - Canvas::text_width(title, 2)) / 2, 8, title, ink, 2);
+    struct View {
+      const char* name;
+      double yaw, pitch;
+    };
+    const View views[3] = {{"oblique", 0.6, 0.45},
+                           {"from above: w0 right, w1 up", 0.0, 1.5707963},
+                           {"from the front: w0 right, w2 up", 0.0, 0.0}};
+    const std::array<uint8_t, 3> axis[3] = {{255, 0, 0}, {0, 180, 0}, {0, 0, 255}};
+    for (int v = 0; v < 3; ++v) {
+      const int ox = v * S;
+      const double yaw = views[v].yaw, pitch = views[v].pitch;
+      auto proj = [&](double a, double b, double z) {
+        const double x1 = a * std::cos(yaw) - b * std::sin(yaw);
+        const double y1 = a * std::sin(yaw) + b * std::cos(yaw);
+        const double y2 = y1 * std::sin(pitch) + z * std::cos(pitch);
+        return std::pair<double, double>{ox + S / 2 + 0.4 * S * x1 / scale,
+                                         top + S / 2 - 0.4 * S * y2 / scale};
+      };
+      c.rect(ox + 4, top, ox + S - 4, top + 1, {200, 200, 200});
+      c.rect(ox + 4, top + S - 1, ox + S - 4, top + S, {200, 200, 200});
+      c.rect(ox + 4, top, ox + 5, top + S, {200, 200, 200});
+      c.rect(ox + S - 5, top, ox + S - 4, top + S, {200, 200, 200});
+      c.text(ox + 10, top + 6, views[v].name, ink);
+      for (int f = 0; f + 1 < d.frames(); ++f) {
+        const int clip = [&] {
+          for (size_t i = 0; i < d.clips.size(); ++i)
+            if (f >= d.clips[i].first && f < d.clips[i].first + d.clips[i].count)
+              return static_cast<int>(i);
+          return 0;
+        }();
+        if (f + 1 >= d.clips[clip].first + d.clips[clip].count) continue;
+        auto [x0, y0] = proj(p.weights(f, 0), p.weights(f, 1), p.weights(f, 2));
+        auto [x1, y1] = proj(p.weights(f + 1, 0), p.weights(f + 1, 1), p.weights(f + 1, 2));
+        c.line(x0, y0, x1, y1, palette(clip + 3));
+      }
+      for (int k = 0; k < 3; ++k) {
+        double e[3] = {0, 0, 0};
+        e[k] = scale;
+        auto [x0, y0] = proj(0, 0, 0);
+        auto [x1, y1] = proj(e[0], e[1], e[2]);
+        c.line(x0, y0, x1, y1, axis[k]);
+        if (std::hypot(x1 - x0, y1 - y0) > 12) {  // an axis seen end-on is not named
+          const std::string name = "w" + std::to_string(k);
+          const double len = std::hypot(x1 - x0, y1 - y0);
+          c.text(static_cast<int>(x1 + 9 * (x1 - x0) / len) - 5,
+                 static_cast<int>(y1 + 9 * (y1 - y0) / len) - 3, name, axis[k]);
+        }
+      }
+    }
+    for (size_t i = 0; i < d.clips.size(); ++i) {
+      const auto [x, y] = at_of[i];
+      c.rect(x, y, x + 14, y + 8, palette(static_cast<int>(i) + 3));
+      c.text(x + 20, y, d.clips[i].name, ink);
     }
     write_png(dir + "/trajectory.png", c.img);
   }

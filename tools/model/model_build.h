@@ -56,7 +56,10 @@ struct BuildOptionError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 void check_build_options(const BuildOptions& opt);
-// psnr.txt + psnr.png, eigenfires.png (contact sheet), trajectory.png (first three weights).
+// psnr.txt + psnr.png (PSNR vs E: axes, ticks, titles, legend), eigenfires.png
+// (the mean and first eigen-images, each named), trajectory.png (the first
+// three weights from three viewpoints, a legend of the clips); text in
+// Canvas::text's 5x7 font.
 void write_reports(const Dataset& d, const BuiltModel& m, const std::string& dir);
 std::string tool_version();
 

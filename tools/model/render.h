@@ -5,6 +5,7 @@
 #include <array>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/image.h"
@@ -28,6 +29,17 @@ struct Canvas {
   void dot(int x, int y, std::array<uint8_t, 3> c);
   void line(double x0, double y0, double x1, double y1, std::array<uint8_t, 3> c);
   void rect(int x0, int y0, int x1, int y1, std::array<uint8_t, 3> c);  // filled
+  // Text in a 5x7 bitmap font (A-Z, 0-9 and - . , ( ) / : _ + = %; lower
+  // case drawn as upper case, anything else as '?'), `scale` pixels a font
+  // pixel, top-left at (x, y). Returns its width.
+  int text(int x, int y, std::string_view s, std::array<uint8_t, 3> c, int scale = 1);
+  // Text turned a quarter anticlockwise (reading bottom to top), its
+  // bottom-left at (x, y): a vertical axis's title.
+  void text_up(int x, int y, std::string_view s, std::array<uint8_t, 3> c, int scale = 1);
+  static int text_width(std::string_view s, int scale = 1) {
+    return s.empty() ? 0 : (6 * static_cast<int>(s.size()) - 1) * scale;
+  }
+  static constexpr int kTextHeight = 7;  // font pixels
 };
 // Distinct colours for clips / series.
 std::array<uint8_t, 3> palette(int i);

@@ -48,9 +48,13 @@ void FlameView::render(std::span<const float> weights, const Look& look, int w, 
     if (look.transfer.size() >= 2) {
       std::vector<Vec3> stops;
       for (const auto& c : look.transfer) stops.push_back({c[0], c[1], c[2]});
-      s.ramp = transfer_ramp(stops, m.colour.black_level);
+      // Evenly spaced: the element's plain `transfer` (the very same ramp).
+      std::vector<float> at;
+      if (!look.evenly_spaced()) at = look.transfer_at;
+      s.ramp = transfer_ramp(stops, m.colour.black_level, at);
     } else {
-      s.ramp = hls_ramp(look.hue, look.saturation, m.colour.black_level);
+      s.ramp = hls_ramp(look.hue, look.saturation, m.colour.black_level,
+                        look.has_hue_top ? look.hue_top : look.hue);
     }
     s.brightness = look.brightness;
     s.glow_radius = std::max(0.02f, look.glow_radius);  // as the element clamps the model's

@@ -51,9 +51,19 @@ void ReportsView::draw(float width) {
       ImGui::TextWrapped("%s", r.error.c_str());
     } else if (r.width > 0) {
       const float w = std::max(16.0f, width);
-      ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(r.texture.get())),
-                   ImVec2(w, w * static_cast<float>(r.height) / static_cast<float>(r.width)));
-      ImGui::Text("%s, %dx%d", r.name.c_str(), r.width, r.height);
+      const auto id = reinterpret_cast<ImTextureID>(static_cast<intptr_t>(r.texture.get()));
+      ImGui::Image(id, ImVec2(w, w * static_cast<float>(r.height) / static_cast<float>(r.width)));
+      if (ImGui::IsItemHovered()) {
+        // Hovered: the plot at its own size (its text is a 5x7 font), or as
+        // large as the window holds.
+        const ImVec2 room = ImGui::GetIO().DisplaySize;
+        const float k = std::min({1.0f, (room.x - 24) / static_cast<float>(r.width),
+                                  (room.y - 24) / static_cast<float>(r.height)});
+        ImGui::BeginTooltip();
+        ImGui::Image(id, ImVec2(k * static_cast<float>(r.width), k * static_cast<float>(r.height)));
+        ImGui::EndTooltip();
+      }
+      ImGui::Text("%s, %dx%d (hover: full size)", r.name.c_str(), r.width, r.height);
     }
     ImGui::EndTabItem();
   }

@@ -20,6 +20,15 @@
 //                             names: z, space, Left)
 //   show reports              open the Reports section (its first tab)
 //   resize W H                resize the window (as a user dragging its corner)
+//   story new                 a story from the model's clips (one segment a clip)
+//   story method SEG cut|lowpass|bridge|grow    the joint entering segment SEG (0-based)
+//   story set SEG steps|theta_min|reject_tail|components|repeat V
+//   story kernel SEG A B C    the lowpass taps
+//   story add clip NAME [FROM TO] | story add walk|arp SECONDS   a segment at the end
+//   story delete SEG | story move SEG left|right | story loop on|off
+//                             (each re-planned; one the story reader refuses stops the script)
+//   preview joint SEG         play from two seconds before segment SEG's joint
+//   save-story FILE.toml      as the "Save story" button
 //   screenshot FILE.png       the whole window, once this frame is drawn (the
 //                             commands after it run in the next frame)
 //   dump FILE                 the UI state as "key = value" lines, as screenshot

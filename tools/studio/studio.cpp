@@ -116,6 +116,9 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
   out << "flame_image = " << rect_text(p.drawn().flame_image) << "\n";
   out << "flame_view = " << rect_text(p.drawn().flame_view) << "\n";
   out << "pca = " << rect_text(p.drawn().pca) << "\n";
+  out << "transfer_places = " << rect_text(p.drawn().transfer_places) << "\n";
+  out << "timeline = " << rect_text(p.drawn().timeline) << "\n";
+  out << "joint_steps = " << rect_text(p.drawn().joint_steps) << "\n";
   out << "pca_yaw = " << pca.yaw() << "\npca_pitch = " << pca.pitch()
       << "\npca_zoom = " << pca.scale() << "\n";
   out << "status = " << s.status << "\n";
@@ -133,11 +136,21 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
     out << "\nbase =";
     for (float v : s.base()) std::snprintf(buf, sizeof buf, " %.9g", v), out << buf;
     const Look& l = s.edits().look;
-    out << "\nhue = " << l.hue << "\nsaturation = " << l.saturation
-        << "\nbrightness = " << l.brightness << "\nglow_radius = " << l.glow_radius
-        << "\nglow_strength = " << l.glow_strength << "\ntransfer_stops = " << l.transfer.size()
-        << "\ndetail_scale = " << s.edits().weights.detail_scale
+    out << "\nhue = " << l.hue << "\nhue_top = " << (l.has_hue_top ? l.hue_top : l.hue)
+        << "\nsaturation = " << l.saturation << "\nbrightness = " << l.brightness
+        << "\nglow_radius = " << l.glow_radius << "\nglow_strength = " << l.glow_strength
+        << "\ntransfer_stops = " << l.transfer.size() << "\ntransfer_at =";
+    for (float v : l.transfer_at) out << ' ' << v;
+    out << "\ndetail_scale = " << s.edits().weights.detail_scale
         << "\nundo_depth = " << s.undo_depth() << "\n";
+    // The story being composed: its segments and where each one's joint starts.
+    const int n = s.story() ? static_cast<int>(s.story()->segments.size()) : 0;
+    out << "story_segments = " << n << "\nstory_selected = " << p.selected
+        << "\nstory_joint_frames =";
+    for (int i = 0; i < n; ++i) out << ' ' << s.joint_frame(i);
+    out << "\nstory_seams =";
+    for (int i = 0; i < n; ++i) out << ' ' << s.joint_seam(i);
+    out << "\n";
   }
   if (!out) throw RuntimeError(path + ": cannot write the dump");
 }

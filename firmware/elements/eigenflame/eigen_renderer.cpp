@@ -400,13 +400,24 @@ void EigenBatch::render() {
   glActiveTexture(GL_TEXTURE0);
 }
 
-std::array<uint8_t, 256 * 4> transfer_ramp(std::span<const Vec3> stops, float black) {
+std::array<uint8_t, 256 * 4> transfer_ramp(std::span<const Vec3> stops, float black,
+                                           std::span<const float> positions) {
   std::array<uint8_t, 256 * 4> r{};
   const size_t n = stops.size();
+  const bool placed = positions.size() == n;
   for (int i = 0; i < 256; ++i) {
-    const double x = ramp_lightness(i, black) * static_cast<double>(n - 1);
-    const size_t a = std::min(n - 2, static_cast<size_t>(x));
-    const float t = static_cast<float>(x - a);
+    size_t a = 0;
+    float t = 0;
+    if (!placed) {
+      const double x = ramp_lightness(i, black) * static_cast<double>(n - 1);
+      a = std::min(n - 2, static_cast<size_t>(x));
+      t = static_cast<float>(x - a);
+    } else {
+      const double x = ramp_lightness(i, black);
+      while (a + 2 < n && x >= positions[a + 1]) ++a;  // the stretch [a, a + 1] holding x
+      const double lo = positions[a], hi = positions[a + 1];
+      t = x <= lo ? 0.0f : x >= hi ? 1.0f : static_cast<float>((x - lo) / (hi - lo));
+    }
     const Vec3 c = stops[a] * (1 - t) + stops[a + 1] * t;
     const float v[3] = {c.x, c.y, c.z};
     for (int k = 0; k < 3; ++k)

@@ -197,7 +197,11 @@ class EigenBatch final : public SceneResource {
   FlameUniforms uf_{};
 };
 
-// A transfer function through evenly spaced colour stops (at least two).
-std::array<uint8_t, 256 * 4> transfer_ramp(std::span<const Vec3> stops, float black = 0);
+// A transfer function through colour stops (at least two), linear between
+// them: evenly spaced, or at `positions` (one per stop, 0..1 of the lightness
+// above `black`, non-decreasing; below the first the first colour, above the
+// last the last).
+std::array<uint8_t, 256 * 4> transfer_ramp(std::span<const Vec3> stops, float black = 0,
+                                           std::span<const float> positions = {});
 
 }  // namespace candela

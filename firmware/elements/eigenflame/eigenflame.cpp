@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <mutex>
 
@@ -72,16 +73,22 @@ std::shared_ptr<EigenModel> derive(std::shared_ptr<const model::FlameModel> m, s
                                                    : 0;
       for (int i = l.from; i < l.to; ++i) lean[static_cast<size_t>(i)] += bias;
     }
+  em->sigma = weight_sigmas(*m);
   em->lean.reserve(lean.size());
   for (double l : lean) em->lean.push_back(Fixed::from_double(l));
   em->model = std::move(m);
   return em;
 }
 
-// transfer = "#000000 #8a1800 #ff8020 #fff0c0": evenly spaced colour stops, dark to bright.
-std::vector<Vec3> parse_transfer(ParamReader& r) {
+// transfer = "#000000 #8a1800 #ff8020 #fff0c0": evenly spaced colour stops,
+// dark to bright; "#000000@0 #8a1800@0.2 ...": each at its place (0..1 of
+// the gray above the black level; all stops placed or none, rising).
+std::vector<Vec3> parse_transfer(ParamReader& r, std::vector<float>& places) {
   std::vector<Vec3> stops;
   const std::string text = r.string("transfer", "");
+  const std::string what =
+      "expected colour stops \"#rrggbb #rrggbb ...\" or placed \"#rrggbb@0 #rrggbb@0.4 ... "
+      "#rrggbb@1\" (places 0..1, rising), got \"";
   size_t at = 0;
   while (at < text.size()) {
     const size_t end = text.find_first_of(" ,", at);
@@ -90,9 +97,23 @@ std::vector<Vec3> parse_transfer(ParamReader& r) {
     at = end == std::string::npos ? text.size() : end + 1;
     if (tok.empty()) continue;
     unsigned cr = 0, cg = 0, cb = 0;
-    if (tok.size() != 7 || tok[0] != '#' ||
-        std::sscanf(tok.c_str() + 1, "%2x%2x%2x", &cr, &cg, &cb) != 3)
-      r.fail("transfer", "expected colour stops \"#rrggbb #rrggbb ...\", got \"" + tok + "\"");
+    const size_t sep = tok.find('@');
+    const std::string colour = tok.substr(0, sep);
+    if (colour.size() != 7 || colour[0] != '#' ||
+        std::sscanf(colour.c_str() + 1, "%2x%2x%2x", &cr, &cg, &cb) != 3)
+      r.fail("transfer", what + echo_value(tok) + "\"");
+    const bool placed = sep != std::string::npos;
+    if (!stops.empty() && placed != !places.empty())
+      r.fail("transfer", what + echo_value(tok) + "\": place all stops or none");
+    if (placed) {
+      const std::string place = tok.substr(sep + 1);
+      char* rest = nullptr;
+      const double p = place.empty() ? std::nan("") : std::strtod(place.c_str(), &rest);
+      if (!std::isfinite(p) || *rest != '\0' || p < 0 || p > 1 ||
+          (!places.empty() && p < places.back()))
+        r.fail("transfer", what + echo_value(tok) + "\"");
+      places.push_back(static_cast<float>(p));
+    }
     stops.push_back({cr / 255.0f, cg / 255.0f, cb / 255.0f});
   }
   if (!text.empty() && stops.size() < 2) r.fail("transfer", "expected at least two colour stops");
@@ -116,7 +137,7 @@ class EigenFlame final : public Element {
     const float hue = s.has_hue ? s.hue : m.colour.hue;
     const float sat = s.has_saturation ? s.saturation : m.colour.saturation;
     const float black = m.colour.black_level;
-    look.ramp = s.transfer.size() >= 2 ? transfer_ramp(s.transfer, black)
+    look.ramp = s.transfer.size() >= 2 ? transfer_ramp(s.transfer, black, s.transfer_at)
                                        : hls_ramp(hue, sat, black, s.has_hue_top ? s.hue_top : hue);
     look.brightness = s.brightness;
     look.glow_radius = s.has_glow_radius ? s.glow_radius : std::max(0.02f, m.colour.glow_radius);
@@ -130,8 +151,9 @@ class EigenFlame final : public Element {
       const story::StoryPlan plan =
           story::plan_story(*story, m, story->has_seed ? story->seed : seed, true);
       story_ = std::make_unique<story::StoryPlayer>(plan, m.components(), Fixed::from_ratio(1, 2));
-      renderer_ = std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen),
-                                                  s.layout, e, look, story_->weights(), batch);
+      renderer_ =
+          std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen), s.layout,
+                                          e, look, edited(story_->weights()), batch);
     } else if (s.driver == EigenDriver::kArp && m.has_learning_flames) {
       const auto& L = m.flames;
       shape_ = std::make_unique<FlameShapeModel>(FlameShapeModel::from(m));
@@ -154,8 +176,9 @@ class EigenFlame final : public Element {
       GraphWalker walker(m.graph, m.weights, m.components(), model_->lean, s.walk, seed);
       player_ = std::make_unique<GraphPlayer>(std::move(walker), m.weights, m.components(),
                                               Fixed::from_ratio(1, 2));
-      renderer_ = std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen),
-                                                  s.layout, e, look, player_->weights(), batch);
+      renderer_ =
+          std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen), s.layout,
+                                          e, look, edited(player_->weights()), batch);
     }
     if (s.embers.enabled) {
       embers_ = Program::from_library("floor_quad.vert", "eigenflame_embers.frag");
@@ -183,10 +206,12 @@ class EigenFlame final : public Element {
       story_->set_rate(per_step);
       story_->set_crossfade(s_.crossfade);
       story_->step();
+      edited(story_->weights());
     } else if (player_) {
       player_->set_rate(per_step);
       player_->set_crossfade(s_.crossfade);
       player_->step(lean_);
+      edited(player_->weights());
     } else if (arp_) {
       phase_ += per_step;
       while (phase_ >= Fixed::from_int(1)) {
@@ -229,6 +254,15 @@ class EigenFlame final : public Element {
   }
 
  private:
+  // The weights the renderer shows: the driver's own, or with the scene's
+  // weight edits applied (the studio's function) into edited_.
+  std::span<const float> edited(std::span<const float> base) {
+    if (s_.weights.identity()) return base;
+    edited_.resize(base.size());  // the same size every frame: no reallocation after the first
+    apply_weight_edits(base, model_->sigma, s_.weights, edited_);
+    return edited_;
+  }
+
   void draw_embers(const FrameContext& f) {
     embers_.use();
     glUniformMatrix4fv(ue_[0], 1, GL_FALSE, f.view_projection.m);
@@ -255,6 +289,7 @@ class EigenFlame final : public Element {
   std::unique_ptr<ArpProcess> arp_;
   std::unique_ptr<FlameShapeModel> shape_;
   std::array<float, ArpProcess::kMaxDim> prev_{}, next_{}, shown_{};
+  std::vector<float> edited_;
   std::unique_ptr<EigenRenderer> renderer_;
   Program embers_;
   VertexArray embers_vao_;
@@ -349,7 +384,19 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
   s.hue_top = static_cast<float>(r.number("hue_top", s.hue_top, 0, 360));
   s.has_saturation = r.has("saturation");
   s.saturation = static_cast<float>(r.number("saturation", s.saturation, 0, 1));
-  s.transfer = parse_transfer(r);
+  s.transfer = parse_transfer(r, s.transfer_at);
+  {
+    const auto offsets = r.numbers("weight_offsets", -EigenWeightEdits::kMaxOffset,
+                                   EigenWeightEdits::kMaxOffset, EigenWeightEdits::kShapeWeights);
+    for (size_t k = 0; k < offsets.size(); ++k)
+      s.weights.offset_sigma[k] = static_cast<float>(offsets[k]);
+    s.weights.detail_scale = static_cast<float>(
+        r.number("detail_scale", s.weights.detail_scale, 0, EigenWeightEdits::kMaxDetailScale));
+    if (s.driver == EigenDriver::kArp && !s.weights.identity())
+      r.fail(r.has("weight_offsets") ? "weight_offsets" : "detail_scale",
+             "expected no weight edits with driver = \"arp\" (its weights are the Learning "
+             "Flames model's own; graph and story drivers take them)");
+  }
   s.brightness = static_cast<float>(r.number("brightness", s.brightness, 0, 16));
   s.has_glow_radius = r.has("glow_radius");
   s.glow_radius = static_cast<float>(r.number("glow_radius", s.glow_radius, 0, 1));

@@ -26,6 +26,12 @@
 //                              # with the cube of the gray: deep orange edges, yellow core
 //   saturation = 0.9
 //   transfer = "#000000 #8a1800 #ff8020 #fff0c0"  # or a transfer function (even stops)
+//   transfer = "#000000@0 #8a1800@0.2 #ff8020@0.5 #fff0c0@1"  # or stops at chosen places
+//                              # (all or none placed; 0..1 of the gray, rising)
+//   weight_offsets = [0, 0, 1.5]  # graph/story drivers: weight k moved by this many standard
+//                              # deviations of weight k over the model's frames (at most 50
+//                              # entries, each -5..5; the studio's weight sliders)
+//   detail_scale = 1.0         # 0..4: scales the weights from 50 on (the fine detail)
 //   brightness = 1.0
 //   glow_radius = 0.12         # fraction of the flame height (default: the model's)
 //   glow_strength = 0.6
@@ -48,6 +54,7 @@
 #include "core/fixed.h"
 #include "elements/eigenflame/eigen_renderer.h"
 #include "elements/eigenflame/graph_walker.h"
+#include "elements/eigenflame/weight_edits.h"
 #include "gl/math.h"
 #include "scene/element.h"
 #include "story/story_file.h"
@@ -61,8 +68,9 @@ class FlameModel;
 // A loaded model plus what the runtime derives from it once (per-frame lean).
 struct EigenModel {
   std::shared_ptr<const model::FlameModel> model;
-  std::string source;       // path, or "<built-in default>"
-  std::vector<Fixed> lean;  // per frame: centroid x relative to the calm lean, image widths
+  std::string source;        // path, or "<built-in default>"
+  std::vector<Fixed> lean;   // per frame: centroid x relative to the calm lean, image widths
+  std::vector<float> sigma;  // per weight: its standard deviation over the frames (weight_sigmas)
 };
 
 // The built-in model (firmware/models/default.cmodel, embedded); loaded once.
@@ -92,10 +100,12 @@ struct EigenFlameSettings {
   bool has_hue = false, has_hue_top = false, has_saturation = false, has_glow_radius = false,
        has_glow_strength = false;
   float hue = 28, hue_top = 28, saturation = 0.9f;
-  std::vector<Vec3> transfer;  // non-empty: overrides HLS
+  std::vector<Vec3> transfer;      // non-empty: overrides HLS
+  std::vector<float> transfer_at;  // empty: evenly spaced; else each stop's place (0..1)
   float brightness = 1.0f;
   float glow_radius = 0.12f, glow_strength = 0.6f;
   float edge_fade = 0.05f;
+  EigenWeightEdits weights;  // weight_offsets, detail_scale (graph and story drivers)
   WalkSettings walk;
   Fixed wind_lean = Fixed::from_ratio(5, 100);   // target lean per m/s, image widths
   Fixed max_lean = Fixed::from_ratio(20, 100);   // image widths
