@@ -9,12 +9,8 @@ out vec4 o_color;
 void main() {
   float r2 = dot(v_p, v_p);
   if (r2 >= 1.0) discard;
-  // Bell-shaped, cheaper than exp: (1 - r^2)^8, plus a tighter inner part.
-  // Steep, as a lens's glare around a flame is: the air near the flame glows,
-  // a close-up's far background stays black (a (1 - r^2)^4 bell tinted the
-  // whole frame brown where real close-ups are black).
+  // Bell-shaped, cheaper than exp: (1 - r^2)^4, plus a tighter inner part.
   float q = 1.0 - r2;
-  q *= q;
   q *= q;
   float g = q * q + 0.3 * max(1.0 - r2 * 6.0, 0.0);
   o_color = vec4(v_color.rgb * (g * v_color.a), 0.0);
