@@ -137,6 +137,20 @@ TEST(Pca, AsManyComponentsAsAskedPastTheVarianceCap) {
   EXPECT_EQ(ct::pca_snapshot(px.data(), w, h, frames, o).components(), frames - 1);
 }
 
+TEST(Pca, FramesThatDoNotVaryAreRefusedSayingSo) {
+  // 30 black frames: no component to learn (it built a model of noise, or
+  // failed later naming model.components).
+  std::vector<uint8_t> px(static_cast<size_t>(16) * 16 * 30, 0);
+  ct::PcaOptions o;
+  o.components = 4;
+  try {
+    ct::pca_snapshot(px.data(), 16, 16, 30, o);
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("nothing varies"), std::string::npos) << e.what();
+  }
+}
+
 #ifdef _OPENMP
 TEST(Pca, SameBytesOnAnyNumberOfThreads) {
   // A model is an asset that goes into the repository: building it again from

@@ -97,6 +97,11 @@ PcaResult pca_snapshot(const uint8_t* pixels, int width, int height, int frame_c
   r.total_variance = r.variance.sum();
   int rank = 0;
   while (rank < n && sv2[rank] > sv2[0] * 1e-10) ++rank;
+  if (rank == 0)  // e.g. footage whose every pixel the ingest's background level took off
+    throw std::invalid_argument(
+        "PCA: the training frames are all the same picture (nothing varies), so there is "
+        "nothing to learn; look at the frames (a background level that takes off the whole "
+        "flame makes them all black)");
   int e = 0;
   if (opt.components > 0) {
     e = opt.components;
