@@ -987,3 +987,33 @@ TEST(Studio, AStoryEditTheReaderRefusesIsNotMadeAndSaysWhy) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Studio, TypedTextIsUnicode) {
+  // Click into "Save as scene"'s file field, select all, and type a name with
+  // a Greek letter, an e acute (Latin-1) and the euro sign through real X key
+  // events: the field holds them (UTF-8, the scene is saved under that name),
+  // as a user who names a fire in their own language expects. (Latin-1 only,
+  // before: the alpha and the euro sign were dropped.)
+  ASSERT_EQ(studio(kFire, "file-rect", "pause\nwait 2\ndump " + work("fr.txt") + "\nquit\n"), 0)
+      << log_text();
+  const auto r = numbers(read_dump(work("fr.txt")).at("scene_file"));
+  ASSERT_EQ(r.size(), 4u);
+  ASSERT_GT(r[2], 0);
+  const std::string at = std::to_string(static_cast<int>(r[0] + r[2] / 2)) + " " +
+                         std::to_string(static_cast<int>(r[1] + r[3] / 2));
+  std::string keys;
+  for (const char* k : {"U03B1", "eacute", "EuroSign", "period", "t", "o", "m", "l"})
+    keys += std::string("x-key ") + k + "\nwait 1\n";
+  ASSERT_EQ(studio(kFire, "file-type",
+                   "pause\nwait 2\nx-move " + at + "\nwait 1\nx-press " + at +
+                       "\nwait 1\nx-release " + at + "\nwait 2\nx-key ctrl+a\nwait 1\n" + keys +
+                       "wait 2\ndump " + work("ft.txt") + "\nquit\n"),
+            0)
+      << log_text();
+  const std::string typed = read_dump(work("ft.txt")).at("scene_file_text");
+  EXPECT_EQ(typed, "\xce\xb1\xc3\xa9\xe2\x82\xac.toml") << "alpha, e acute, euro sign in UTF-8";
+}
+
+}  // namespace

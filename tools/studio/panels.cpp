@@ -549,6 +549,7 @@ void Panels::draw_controls(Session& s, ReportsView& reports, double frame_ms) {
 
   if (ImGui::CollapsingHeader("Save as scene", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::InputText("file", path_buf_, sizeof path_buf_);
+    drawn_.scene_file = rect_of(ImGui::GetItemRectMin(), ImGui::GetItemRectSize());
     if (ImGui::Button("Save scene")) {
       scene_path = path_buf_;
       save_scene_reporting(s, scene_path);

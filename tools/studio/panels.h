@@ -37,6 +37,7 @@ struct DrawnRects {
   PixelRect transfer_places;
   PixelRect timeline;     // the story's blocks (all 0 without a story)
   PixelRect joint_steps;  // the selected joint's steps field (0: not shown)
+  PixelRect scene_file;   // the "Save as scene" file name field
 };
 
 class Panels {
@@ -46,6 +47,8 @@ class Panels {
   void draw(Session& session, FlameView* flame, PcaView& pca, ReportsView& reports,
             double frame_ms);
   const DrawnRects& drawn() const { return drawn_; }
+  // What the "Save as scene" file field holds now (UTF-8).
+  std::string scene_file_text() const { return path_buf_; }
   bool quit_requested() const { return quit_; }
   std::string scene_path = "studio-scene.toml";
   int selected = 0;           // the timeline's selected segment (its joint: how it is entered)
@@ -57,7 +60,7 @@ class Panels {
   void draw_timeline(Session& s);
   DrawnRects drawn_;
   bool quit_ = false;
-  char path_buf_[512] = {};
+  char path_buf_[512] = {};  // UTF-8, as ImGui keeps text
   char story_buf_[512] = "studio-story.toml";
   char clip_buf_[128] = {};
   int add_from_ = 0, add_to_ = -1;

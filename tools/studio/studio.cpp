@@ -119,6 +119,8 @@ void dump(const std::string& path, const Session& s, const PcaView& pca, const P
   out << "transfer_places = " << rect_text(p.drawn().transfer_places) << "\n";
   out << "timeline = " << rect_text(p.drawn().timeline) << "\n";
   out << "joint_steps = " << rect_text(p.drawn().joint_steps) << "\n";
+  out << "scene_file = " << rect_text(p.drawn().scene_file) << "\n";
+  out << "scene_file_text = " << p.scene_file_text() << "\n";
   out << "pca_yaw = " << pca.yaw() << "\npca_pitch = " << pca.pitch()
       << "\npca_zoom = " << pca.scale() << "\n";
   out << "status = " << s.status << "\n";

@@ -141,15 +141,35 @@ bool X11Platform::handle(const XEvent& ev) {
       if (plain >= XK_a && plain <= XK_z)
         io.KeysDown[letter_key(static_cast<char>('a' + (plain - XK_a)))] = down;
       if (down && !(state & ControlMask)) {
-        char text[32];
+        char text[64];
         KeySym sym = 0;
-        const int n = XLookupString(&key, text, sizeof text - 1, &sym, nullptr);
-        for (int i = 0; i < n; ++i) {
-          const auto c = static_cast<unsigned char>(text[i]);
-          if (c >= 0x20 && c != 0x7f) io.AddInputCharacter(c);
+        if (auto* ic = static_cast<XIC>(input_context(key.display, key.window))) {
+          // UTF-8 whatever the keyboard layout (Greek, Cyrillic, the euro sign...).
+          Status status = 0;
+          const int n = Xutf8LookupString(ic, &key, text, sizeof text - 1, &sym, &status);
+          if ((status == XLookupChars || status == XLookupBoth) && n > 0) {
+            text[n] = '\0';
+            const auto c = static_cast<unsigned char>(text[0]);
+            if (c >= 0x20 && c != 0x7f) io.AddInputCharactersUTF8(text);
+          }
+        } else {
+          // No input method: Latin-1 bytes are code points, and a Unicode
+          // keysym (0x01000000 + code point) is its character.
+          const int n = XLookupString(&key, text, sizeof text - 1, &sym, nullptr);
+          for (int i = 0; i < n; ++i) {
+            const auto c = static_cast<unsigned char>(text[i]);
+            if (c >= 0x20 && c != 0x7f) io.AddInputCharacter(c);
+          }
+          if (n == 0 && sym >= 0x01000100 && sym <= 0x0110ffff)
+            io.AddInputCharacter(static_cast<unsigned>(sym - 0x01000000));
         }
       }
       return true;
+    }
+    case MappingNotify: {  // the keyboard's map changed (e.g. a script's spare keycode)
+      XMappingEvent m = ev.xmapping;
+      XRefreshKeyboardMapping(&m);
+      return false;
     }
     case FocusIn:
     case FocusOut:
@@ -207,13 +227,48 @@ bool X11Platform::send_motion(int x, int y) {
   });
 }
 
+void* X11Platform::input_context(void* display, unsigned long window) {
+  if (im_tried_) return xic_;
+  im_tried_ = true;
+  auto* dpy = static_cast<::Display*>(display);
+  XIM im = XOpenIM(dpy, nullptr, nullptr, nullptr);
+  if (!im) return nullptr;
+  xic_ =
+      XCreateIC(im, XNInputStyle, XIMPreeditNothing | XIMStatusNothing, XNClientWindow,
+                static_cast<Window>(window), XNFocusWindow, static_cast<Window>(window), nullptr);
+  if (!xic_) XCloseIM(im);
+  return xic_;
+}
+
+// The keycode that types `sym`: the keyboard's own, or else a spare keycode
+// mapped to it (as xdotool does), so scripts can type any character.
+static KeyCode keycode_for(::Display* dpy, KeySym sym) {
+  if (const KeyCode k = XKeysymToKeycode(dpy, sym)) return k;
+  int lo = 0, hi = 0, per = 0;
+  XDisplayKeycodes(dpy, &lo, &hi);
+  KeySym* map = XGetKeyboardMapping(dpy, static_cast<KeyCode>(lo), hi - lo + 1, &per);
+  if (!map) return 0;
+  KeyCode spare = 0;
+  for (int k = hi; k >= lo && !spare; --k) {
+    bool empty = true;
+    for (int i = 0; i < per; ++i) empty = empty && map[(k - lo) * per + i] == NoSymbol;
+    if (empty) spare = static_cast<KeyCode>(k);
+  }
+  XFree(map);
+  if (!spare) return 0;
+  KeySym both[2] = {sym, sym};
+  XChangeKeyboardMapping(dpy, spare, 2, both, 1);
+  XSync(dpy, False);
+  return spare;
+}
+
 bool X11Platform::send_key(const char* name, bool down, bool ctrl) {
   const KeySym sym = XStringToKeysym(name);
   if (sym == NoSymbol) return false;
   return send_event(x_display_, x_window_, down ? KeyPressMask : KeyReleaseMask,
                     [&](XEvent& ev, ::Display* dpy) {
                       ev.type = down ? KeyPress : KeyRelease;
-                      ev.xkey.keycode = XKeysymToKeycode(dpy, sym);
+                      ev.xkey.keycode = keycode_for(dpy, sym);
                       ev.xkey.state = ctrl ? ControlMask : 0;
                       ev.xkey.same_screen = True;
                     });

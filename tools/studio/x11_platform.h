@@ -1,7 +1,8 @@
 // Dear ImGui's platform side on X11 (ImGui ships none): X events from the
 // window backend (DisplayEvents::on_x11_event) -> ImGuiIO: mouse position,
-// buttons and wheel, keys and modifiers, typed text, focus; plus the display
-// size and the time step at each new frame.
+// buttons and wheel, keys and modifiers, typed text (UTF-8, through the X
+// input method), focus; plus the display size and the time step at each new
+// frame.
 #pragma once
 
 #include <chrono>
@@ -40,6 +41,12 @@ class X11Platform {
   bool first_ = true;
   void* x_display_ = nullptr;  // ::Display*, from the events
   unsigned long x_window_ = 0;
+  // The X input method's context for typed text (UTF-8, compose keys); made
+  // at the first key press, null where the server offers none (then Latin-1
+  // and Unicode keysyms). It lives as long as the display connection.
+  void* input_context(void* display, unsigned long window);
+  bool im_tried_ = false;
+  void* xic_ = nullptr;
 };
 
 }  // namespace candela::studio
