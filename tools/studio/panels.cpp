@@ -335,8 +335,13 @@ void Panels::draw_timeline(Session& s) {
   const float px = at.x + per * static_cast<float>(s.frame());
   dl->AddLine(ImVec2(px, at.y - 2), ImVec2(px, at.y + h + jh), IM_COL32(255, 255, 255, 255), 2);
 
-  // The selected segment and the joint that enters it.
-  const story::SegmentSpec& g = d.segments[static_cast<size_t>(selected)];
+  // The selected segment and the joint that enters it. Every edit below
+  // re-plans the story and replaces `d` and `p`: what the rest of this frame
+  // shows is copied from them first (a frame later it shows the edit).
+  const story::SegmentSpec g = d.segments[static_cast<size_t>(selected)];
+  const bool looped = d.loop;
+  const float seam_bound = p.seam_bound();
+  const int planned_frames = p.frames();
   ImGui::Text("segment %d: %s", selected, segment_label(g).c_str());
   ImGui::SameLine();
   if (ImGui::SmallButton("<") && selected > 0 && s.edit_story([&](story::StoryDesc& e) {
@@ -361,7 +366,7 @@ void Panels::draw_timeline(Session& s) {
         [&](story::StoryDesc& e) { e.segments[static_cast<size_t>(selected)].repeat = repeat; },
         "repeats");
   ImGui::SameLine();
-  bool loop = d.loop;
+  bool loop = looped;
   if (ImGui::Checkbox("loop", &loop)) s.edit_story([&](story::StoryDesc& e) { e.loop = loop; });
 
   story::TransitionSpec t = g.transition;
@@ -395,9 +400,8 @@ void Panels::draw_timeline(Session& s) {
         "joint");
   const float seam = s.joint_seam(selected);
   if (seam >= 0) {
-    ImGui::TextColored(
-        seam > p.seam_bound() ? ImVec4(1, 0.4f, 0.3f, 1) : ImVec4(0.7f, 0.9f, 0.7f, 1),
-        "seam ratio %.2f (bound %.2f)", seam, p.seam_bound());
+    ImGui::TextColored(seam > seam_bound ? ImVec4(1, 0.4f, 0.3f, 1) : ImVec4(0.7f, 0.9f, 0.7f, 1),
+                       "seam ratio %.2f (bound %.2f)", seam, seam_bound);
     ImGui::SameLine();
     if (ImGui::SmallButton("preview joint")) s.preview_joint(selected);
   }
@@ -444,7 +448,7 @@ void Panels::draw_timeline(Session& s) {
   ImGui::SameLine();
   if (ImGui::Button("Undo") && s.undo()) s.status = "undone";
   ImGui::SameLine();
-  ImGui::TextDisabled("%d frames, %d segments", p.frames(), n);
+  ImGui::TextDisabled("%d frames, %d segments", planned_frames, n);
   if (!s.status.empty()) ImGui::TextWrapped("%s", s.status.c_str());  // a refused edit says why
 }
 
