@@ -43,4 +43,6 @@ Fixed Flicker::at(Fixed t) const {
   return Fixed::from_raw(Fixed::kOne + static_cast<int32_t>(sum / 100));
 }
 
+Fixed Flicker::flutter(Fixed t) const { return value_noise(t.raw, 300, 4); }
+
 }  // namespace candela

@@ -16,6 +16,10 @@ class Flicker {
   explicit Flicker(uint64_t seed);
   // Light at time t (seconds since start): about 1 on average, 0.55..1.35.
   Fixed at(Fixed t) const;
+  // The flutter of a flame's light alone: -1..1 at 30 random values a second,
+  // smoothly joined, so most of its power lies between 2 and 15 Hz (a fire's
+  // tongues tearing off; at() reaches about 6 Hz).
+  Fixed flutter(Fixed t) const;
 
  private:
   Fixed value_noise(int64_t t_q16, int rate_hz_x10, uint32_t stream) const;

@@ -1,15 +1,9 @@
-// JSON helpers without a JSON library (candela_core has none): a string as
-// a JSON string literal, and numbers rounded as a report shows them before
-// nlohmann_json (firmware/input, app/, the recorder) writes them.
+// Numbers rounded as a report shows them, before nlohmann_json (firmware/
+// input, app/, the recorder) writes them: JSON text itself is always
+// nlohmann_json's (strings escaped by it).
 #pragma once
 
-#include <string>
-#include <string_view>
-
 namespace candela {
-
-// "text" with ", \ and control characters escaped (\u00XX).
-std::string json_quote(std::string_view text);
 
 // `v` rounded to `decimals` places as printf's "%.*f" rounds it (so 0.5 is
 // written 0.5, not 0.500000000001); NaN and infinities stay (JSON: null).

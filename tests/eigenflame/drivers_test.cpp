@@ -169,6 +169,52 @@ TEST(GraphWalker, ExtremeJumpCostsStillWalkTheGraph) {
   EXPECT_LT(jumps_from_4, visits_4 / 100);
 }
 
+// A clip's last frame has no next frame: its only ways on are jumps a few
+// frames back, to frames like it. The guard refuses only stretches longer
+// than L, so the walk used to circle the clip's last 24 frames, a loop of
+// 0.4 s shown again and again (a model of the shared breeze candle clip
+// showed its calm tail for the whole 10 s and never its gust). Now the jump
+// out of a dead end goes only to a frame last shown over L steps ago: every
+// loop through it is longer than L, and the walk leaves the tail.
+TEST(GraphWalker, NoLoopShorterThanTheStretchInAClipsTail) {
+  const int f = 200, tail = 176;
+  std::vector<int32_t> offsets{0}, succ;
+  std::vector<float> cost;
+  for (int i = 0; i < f; ++i) {
+    if (i + 1 < f) succ.push_back(i + 1), cost.push_back(1.0f);
+    if (i == f - 1) {  // the clip's last frame: like frames 14 and 24 before it
+      for (int back : {14, 24}) succ.push_back(i - back), cost.push_back(1.0f);
+    } else if (i % 10 == 0 && i >= 40 && i < tail) {  // the clip proper: a few longer jumps
+      succ.push_back(i - 40), cost.push_back(1.0f);
+    }
+    offsets.push_back(static_cast<int32_t>(succ.size()));
+  }
+  std::vector<float> weights(static_cast<size_t>(f) * 2, 0.0f);
+  for (int i = 0; i < f; ++i) weights[static_cast<size_t>(2 * i)] = static_cast<float>(i);
+  WalkSettings s;  // L = 45, W = 1800
+  GraphWalker walker({offsets, succ, cost}, weights, 2, std::vector<Fixed>(f), s, 11);
+  std::vector<int64_t> last_shown(f, -1);
+  int32_t from = walker.current();
+  last_shown[static_cast<size_t>(from)] = 0;
+  int in_tail = 0, short_loops = 0;
+  const int kSteps = 20000;
+  for (int t = 1; t <= kSteps; ++t) {
+    const int32_t to = walker.step(Fixed{});
+    const int64_t seen = last_shown[static_cast<size_t>(to)];
+    if (from == f - 1 && seen >= 0 && t - seen <= s.max_stretch) ++short_loops;
+    last_shown[static_cast<size_t>(to)] = t;
+    in_tail += to >= tail;
+    from = to;
+  }
+  EXPECT_EQ(short_loops, 0);
+  // The tail is 12% of the clip; a walk circling it spent 98% of its steps
+  // there. Now it leaves by the frames nearest the tail's that it has not
+  // just shown, about 70 back (these weights are the frame numbers).
+  EXPECT_LT(in_tail, kSteps / 2) << in_tail << " of " << kSteps << " steps in the tail";
+  EXPECT_GT(std::count_if(last_shown.begin(), last_shown.end(), [](int64_t t) { return t >= 0; }),
+            f * 7 / 10);
+}
+
 // --- ARP -------------------------------------------------------------------
 
 // A known, stable AR(2) over D parameters, and a training sequence from it.

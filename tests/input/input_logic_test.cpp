@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/json.h"
 #include "input/motion_wind.h"
 #include "input/sensor_logic.h"
 #include "input/spsc_queue.h"
@@ -360,14 +359,3 @@ TEST(CameraMotion, DownsampleAveragesBlocks) {
 
 }  // namespace
 }  // namespace candela
-
-// The state query and the recorder's manifests carry device names and error
-// messages verbatim (they may hold quotes, backslashes, newlines): escaped,
-// they stay one valid JSON string.
-TEST(JsonQuote, EscapesWhatWouldBreakTheDocument) {
-  EXPECT_EQ(candela::json_quote("plain /dev/video0"), "\"plain /dev/video0\"");
-  EXPECT_EQ(candela::json_quote("say \"hi\"\\"), "\"say \\\"hi\\\"\\\\\"");
-  EXPECT_EQ(candela::json_quote("two\nlines\t\x01"), "\"two\\u000alines\\u0009\\u0001\"");
-  EXPECT_EQ(candela::json_quote("\xc3\xa9t\xc3\xa9"), "\"\xc3\xa9t\xc3\xa9\"");  // UTF-8 as it is
-  EXPECT_EQ(candela::json_quote(""), "\"\"");
-}

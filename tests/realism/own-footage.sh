@@ -12,10 +12,11 @@
 # distance to the clip within the real clips' spread. The model is made in a
 # temporary folder and never kept (the footage's licence is unclear).
 # Exit status: measure's (0 inside, 1 outside, 2 bad input); 77 if the shared
-# clips are not here. OWN_FOOTAGE_KEYS adds eigenflame keys (to try settings).
+# clips are not here. OWN_FOOTAGE_KEYS adds eigenflame keys (to try settings);
+# OWN_FOOTAGE_KEEP=1 keeps the folder (model, scene, frames) to look at.
 set -u
 if [ $# -lt 2 ]; then
-  sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 fi
 . "$(dirname "$0")/common.sh"
@@ -24,7 +25,7 @@ clip=$1 kind=$2
 shift 2
 [ -d "$flames/$clip" ] || { echo "no clip $flames/$clip" >&2; exit 2; }
 out=$(mktemp -d "${TMPDIR:-/tmp}/candela-own.XXXXXX")
-trap 'rm -rf "$out"' EXIT
+[ -n "${OWN_FOOTAGE_KEEP:-}" ] && echo "keeping $out" >&2 || trap 'rm -rf "$out"' EXIT
 if ! "$tool" ingest "$flames/$clip" --out "$out/dataset" --as-filmed >"$out/ingest.log" 2>&1 ||
   ! "$tool" build "$out/dataset" --out "$out/model.cmodel" --components 512 --holdout 0 \
     >"$out/build.log" 2>&1; then

@@ -197,6 +197,7 @@ void EigenRenderer::composite(const Mat4& view, const Mat4& view_projection,
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, batch_->sprite_atlas());
   glUniform1i(u.sprite, 0);
+  glUniform1f(u.light, pose.light);
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
   glEnable(GL_BLEND);
@@ -226,9 +227,9 @@ EigenBatch::EigenBatch() {
       Program::from_library("eigenflame.vert", "eigenflame.frag",
                             "#define SHAPE_ROWS " + std::to_string(FlamePose::kShapeRows) + "\n");
   const auto u = [&](const char* n) { return flame_.uniform(n); };
-  uf_ = {u("u_view_projection"), u("u_origin"), u("u_right"),      u("u_size"),
-         u("u_margin"),          u("u_shape"),  u("u_base"),       u("u_height"),
-         u("u_deform"),          u("u_sprite"), u("u_sprite_rect")};
+  uf_ = {u("u_view_projection"), u("u_origin"), u("u_right"),       u("u_size"),
+         u("u_margin"),          u("u_shape"),  u("u_base"),        u("u_height"),
+         u("u_deform"),          u("u_sprite"), u("u_sprite_rect"), u("u_light")};
   sprite_program_ = Program::from_library("fullscreen.vert", "eigenflame_sprite.frag");
   const auto v = [&](const char* n) { return sprite_program_.uniform(n); };
   us_ = {v("u_gray"),      v("u_glow"),     v("u_ramp"),       v("u_gray_rect"),

@@ -94,6 +94,7 @@ struct FlamePose {
   std::array<float, 2 * (kShapeRows + 1)> shape{};
   float base = 0;              // flame base above the image's bottom edge, heights
   float height_factor = 1.0f;  // flame base-to-tip length, heights
+  float light = 1.0f;          // the flame's light this frame (its flicker), times the sprite
 };
 
 class EigenBatch;
@@ -174,7 +175,7 @@ class EigenBatch final : public SceneResource {
   GLuint grid_vao() const { return grid_vao_.get(); }
   GLsizei grid_indices() const { return grid_indices_; }
   struct FlameUniforms {
-    GLint vp, origin, right, size, margin, shape, base, height, deform, sprite, sprite_rect;
+    GLint vp, origin, right, size, margin, shape, base, height, deform, sprite, sprite_rect, light;
   };
   const FlameUniforms& flame_uniforms() const { return uf_; }
 

@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "core/flicker.h"
 #include "core/log.h"
 #include "elements/eigenflame/arp_driver.h"
 #include "elements/eigenflame/flame_shape.h"
@@ -128,7 +129,11 @@ class EigenFlame final : public Element {
   EigenFlame(const EigenFlameSettings& s, std::shared_ptr<const EigenModel> model, Vec3 position,
              uint64_t seed, EigenBatch* batch,
              std::shared_ptr<const story::StoryDesc> story = nullptr)
-      : s_(s), model_(std::move(model)), position_(position), own_batch_(batch == nullptr) {
+      : s_(s),
+        model_(std::move(model)),
+        position_(position),
+        own_batch_(batch == nullptr),
+        flicker_(seed ^ 0x666c6963ULL) {
     const model::FlameModel& m = *model_->model;
     const double fps = m.clips.empty() ? 30.0 : m.clips.front().fps;
     // Model frames per animation step (60 steps per second; the step length is known in update).
@@ -201,6 +206,8 @@ class EigenFlame final : public Element {
     lean_ = lean_toward(lean_, w.x, s_.wind_lean, s_.max_lean, k);
     wind_x_ += (w.x - wind_x_) * k;  // the wind the flame has caught up with (arp bending)
     time_ = step.time;
+    light_ = s_.flicker.raw > 0 ? Fixed::from_int(1) + s_.flicker * flicker_.flutter(step.time)
+                                : Fixed::from_int(1);
     const Fixed per_step = fps_ * step.dt;
     if (story_) {
       story_->set_rate(per_step);
@@ -245,6 +252,7 @@ class EigenFlame final : public Element {
     pose.origin = position_;
     pose.height = s_.height;
     pose.widen = s_.widen;
+    pose.light = light_.to_float();
     if (shape_) {
       pose.deform = true;
       shape_->pose({shown_.data(), static_cast<size_t>(shape_->dim())},
@@ -283,7 +291,8 @@ class EigenFlame final : public Element {
   std::shared_ptr<const EigenModel> model_;
   Vec3 position_;
   bool own_batch_;
-  Fixed fps_, lean_, phase_, time_, wind_x_;
+  Fixed fps_, lean_, phase_, time_, wind_x_, light_ = Fixed::from_int(1);
+  Flicker flicker_;
   std::unique_ptr<GraphPlayer> player_;
   std::unique_ptr<story::StoryPlayer> story_;
   std::unique_ptr<ArpProcess> arp_;
@@ -398,6 +407,7 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
              "Flames model's own; graph and story drivers take them)");
   }
   s.brightness = static_cast<float>(r.number("brightness", s.brightness, 0, 16));
+  s.flicker = r.fixed("flicker", s.flicker.to_double(), 0, 1);
   s.has_glow_radius = r.has("glow_radius");
   s.glow_radius = static_cast<float>(r.number("glow_radius", s.glow_radius, 0, 1));
   s.has_glow_strength = r.has("glow_strength");

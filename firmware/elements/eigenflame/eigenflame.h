@@ -33,6 +33,10 @@
 //                              # entries, each -5..5; the studio's weight sliders)
 //   detail_scale = 1.0         # 0..4: scales the weights from 50 on (the fine detail)
 //   brightness = 1.0
+//   flicker = 0.0              # 0..1: the flame's light flickers as firelight does (core/
+//                              # flicker.h, 0.7-11 Hz) by this share of its swing: a
+//                              # simulation's light changes too slowly (its brightness
+//                              # spectrum is steeper than a real fire's)
 //   glow_radius = 0.12         # fraction of the flame height (default: the model's)
 //   glow_strength = 0.6
 //   edge_fade = 0.05           # fade the flame out over this share of the image at its
@@ -103,6 +107,7 @@ struct EigenFlameSettings {
   std::vector<Vec3> transfer;      // non-empty: overrides HLS
   std::vector<float> transfer_at;  // empty: evenly spaced; else each stop's place (0..1)
   float brightness = 1.0f;
+  Fixed flicker;  // 0..1, share of core/flicker.h's swing
   float glow_radius = 0.12f, glow_strength = 0.6f;
   float edge_fade = 0.05f;
   EigenWeightEdits weights;  // weight_offsets, detail_scale (graph and story drivers)

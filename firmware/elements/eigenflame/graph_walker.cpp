@@ -51,7 +51,29 @@ GraphWalker::GraphWalker(const model::MotionGraph& graph, std::span<const float>
   std::vector<int32_t> fill(bin_offsets_.begin(), bin_offsets_.end() - 1);
   for (int32_t i = 0; i < f; ++i) bin_frames_[static_cast<size_t>(fill[bin_of(lean_[i])]++)] = i;
   current_ = f > 0 ? static_cast<int32_t>(rng_.below(static_cast<uint32_t>(f))) : 0;
-  guard_.push(current_);
+  shown_at_.assign(static_cast<size_t>(f), kNeverShown);
+  // A model of a few frames must still be able to move.
+  revisit_ = static_cast<uint64_t>(std::min(s_.max_stretch, f / 2));
+  dead_end_.assign(static_cast<size_t>(f), 1);
+  for (int32_t i = 0; i < f; ++i)
+    for (int32_t k = graph_.offsets[i]; k < graph_.offsets[i + 1]; ++k)
+      if (is_natural(i, graph_.successors[k])) dead_end_[static_cast<size_t>(i)] = 0;
+  show(current_);
+}
+
+bool GraphWalker::allows(int32_t from, int32_t frame) const {
+  // Out of a dead end only to a frame last shown over L steps ago: the jump
+  // there is forced, so a short way back would be taken every time round.
+  // (Elsewhere a jump back is a 1-in-12 chance per frame: no loop forms, and
+  // the wind's steering keeps all its frames.)
+  const uint64_t at = shown_at_[static_cast<size_t>(frame)];
+  return (!dead_end_[static_cast<size_t>(from)] || at == kNeverShown || steps_ - at > revisit_) &&
+         guard_.allows(frame);
+}
+
+void GraphWalker::show(int32_t frame) {
+  guard_.push(frame);
+  shown_at_[static_cast<size_t>(frame)] = ++steps_;
 }
 
 int GraphWalker::bin_of(Fixed lean) const {
@@ -92,7 +114,7 @@ int32_t GraphWalker::bridge(int32_t toward, Fixed target, bool steer_only) {
   for (int i = 0; i < kBridgeSamples; ++i) {
     const int32_t c = steer_only || i < kBridgeSamples / 4 ? steer_candidate(target)
                                                            : static_cast<int32_t>(rng_.below(f));
-    if (c == toward || !guard_.allows(c)) continue;
+    if (c == toward || !allows(current_, c)) continue;
     const float miss = (abs(lean_[c] - target) / s_.lean_tolerance).to_float();
     const float score = distance2(toward, c) * (1.0f + miss * miss);
     if (best < 0 || score < best_score) best = c, best_score = score;
@@ -125,7 +147,7 @@ int32_t GraphWalker::step(Fixed target) {
   Fixed best_miss = Fixed::from_int(1000);
   for (int32_t i = begin; i < end; ++i) {
     const int32_t to = graph_.successors[i];
-    if (!guard_.allows(to)) continue;
+    if (!allows(from, to)) continue;
     total += std::max(weight(i), Fixed::from_raw(1));
     best_miss = std::min(best_miss, abs(lean_[to] - target));
   }
@@ -142,7 +164,7 @@ int32_t GraphWalker::step(Fixed target) {
     int32_t pick = static_cast<int32_t>(rng_.below(static_cast<uint32_t>(total.raw)));
     for (int32_t i = begin; i < end && next < 0; ++i) {
       const int32_t to = graph_.successors[i];
-      if (!guard_.allows(to)) continue;
+      if (!allows(from, to)) continue;
       pick -= std::max(weight(i), Fixed::from_raw(1)).raw;
       if (pick < 0) next = to;
     }
@@ -154,11 +176,11 @@ int32_t GraphWalker::step(Fixed target) {
     const int32_t f = frames();
     for (int32_t k = 0, start = static_cast<int32_t>(rng_.below(static_cast<uint32_t>(f)));
          k < f && next < 0; ++k)
-      if (guard_.allows((start + k) % f)) next = (start + k) % f;
+      if (allows(from, (start + k) % f)) next = (start + k) % f;
     if (next < 0) next = graph_.successors[begin];  // only if every frame repeats (tiny models)
   }
   if (!is_natural(from, next)) ++jumps_;
-  guard_.push(next);
+  show(next);
   current_ = next;
   return next;
 }

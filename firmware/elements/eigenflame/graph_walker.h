@@ -6,6 +6,11 @@
 // whose lean (intensity-weighted centroid x of the reconstructed frame, in
 // image widths) is near the lean the wind asks for are preferred, and when
 // no successor leans far enough the walk may jump to a frame that does.
+// From a frame with no next frame (a clip's end) it jumps only to a frame it
+// has not shown within the last L steps (F/2 for a model of F < 2L frames):
+// a clip's tail whose only exits are jumps a few frames back would otherwise
+// be circled every fraction of a second, loops shorter than the L the guard
+// looks at.
 // Where the graph offers no allowed successor (a sparse graph, or the guard
 // refusing them all), the walk bridges to the frame nearest in weight space
 // to where it would have gone, among a seeded sample, as Direct Bridging does.
@@ -60,6 +65,10 @@ class GraphWalker {
  private:
   int frames() const { return static_cast<int>(graph_.offsets.size()) - 1; }
   int bin_of(Fixed lean) const;
+  // Neither a short loop out of a dead end (to a frame shown within the last
+  // L steps) nor a long replay (the guard).
+  bool allows(int32_t from, int32_t frame) const;
+  void show(int32_t frame);
   int32_t steer_candidate(Fixed target);
   int32_t bridge(int32_t toward, Fixed target, bool steer_only);
   float distance2(int32_t a, int32_t b) const;
@@ -79,6 +88,10 @@ class GraphWalker {
   Fixed lean_lo_, lean_step_;
   std::vector<int32_t> bin_offsets_, bin_frames_;
   std::vector<Fixed> inv_cost_;  // per successor: preference of a jump
+  static constexpr uint64_t kNeverShown = ~uint64_t{0};
+  std::vector<uint64_t> shown_at_;  // per frame: the step it was last shown at
+  std::vector<uint8_t> dead_end_;   // per frame: 1 when the graph has no natural next frame
+  uint64_t steps_ = 0, revisit_ = 0;
   int32_t current_ = 0;
   uint64_t jumps_ = 0, steers_ = 0, refusals_ = 0;
 };
