@@ -6,13 +6,10 @@
 #include <thread>
 
 #include "app/kiosk.h"
+#include "app/kiosk_post.h"
 #include "app/sd_notify.h"
 #include "core/clock.h"
 #include "core/log.h"
-#include "gl/gles.h"
-#include "gl/program.h"
-#include "gl/render_target.h"
-#include "gl/texture.h"
 #include "input/input_hub.h"
 #include "sound/sound_output.h"
 
@@ -29,60 +26,6 @@ class KeysToInputs final : public DisplayEvents {
 
  private:
   InputHub* inputs_;
-};
-
-// The kiosk's last pass: the cross-fade from the old scene's last frame and
-// the master brightness, one full-screen triangle each, blended over the
-// frame. Made once when the loop starts with a kiosk: nothing allocates
-// per frame (the cross-fade's target is made at a swap, itself a rebuild).
-class KioskPost {
- public:
-  KioskPost()
-      : program_(Program::from_library("fullscreen.vert", "kiosk_post.frag")),
-        vao_(make_vertex_array()) {
-    u_textured_ = program_.uniform("u_textured");
-    u_alpha_ = program_.uniform("u_alpha");
-    u_image_ = program_.uniform("u_image");
-  }
-  // The old scene's last frame, drawn into `old` (sized to the screen).
-  RenderTarget& snapshot_target(int w, int h) {
-    if (!old_ || old_.width() != w || old_.height() != h) old_ = RenderTarget(w, h);
-    return old_;
-  }
-  // Over the bound framebuffer: the old frame at `old_alpha` (0: none), then
-  // black at 1 - level.
-  void draw(float old_alpha, float level) {
-    const bool fade = old_alpha > 0.0f && old_;
-    const bool dim = level < 0.999f;
-    if (!fade && !dim) return;
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    program_.use();
-    glBindVertexArray(vao_.get());
-    if (fade) {
-      glActiveTexture(GL_TEXTURE0);
-      glBindTexture(GL_TEXTURE_2D, old_.texture());
-      glUniform1i(u_image_, 0);
-      glUniform1i(u_textured_, 1);
-      glUniform1f(u_alpha_, old_alpha);
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-    }
-    if (dim) {
-      glUniform1i(u_textured_, 0);
-      glUniform1f(u_alpha_, 1.0f - std::clamp(level, 0.0f, 1.0f));
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-    }
-    glBindVertexArray(0);
-    glDisable(GL_BLEND);
-  }
-
- private:
-  Program program_;
-  VertexArray vao_;
-  RenderTarget old_;
-  GLint u_textured_ = -1, u_alpha_ = -1, u_image_ = -1;
 };
 
 LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* owner,
@@ -102,10 +45,11 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
   Scene* scene = scene_in;
   std::unique_ptr<Scene> held;  // a swapped-in scene when the caller owns none
   Kiosk* kiosk = s.kiosk;
-  std::optional<KioskPost> post;
-  if (kiosk) {
+  std::optional<KioskPost> own_post;
+  KioskPost* post = s.post;
+  if (kiosk && !post) {
     try {
-      post.emplace();
+      post = &own_post.emplace();
     } catch (const std::exception& e) {
       LOG_ERROR("kiosk: %s; no brightness or cross-fade", e.what());
     }

@@ -16,6 +16,7 @@ namespace candela {
 
 class InputHub;
 class Kiosk;
+class KioskPost;
 class SdNotify;
 class SoundOutput;
 
@@ -36,8 +37,10 @@ struct LoopSettings {
   // Live control (app/kiosk.h): scene swaps, brightness, screen off. Null:
   // none (the loop then draws exactly what it always did).
   Kiosk* kiosk = nullptr;
-  uint64_t seed = 0;         // --seed, for scenes the kiosk swaps in (0: each scene's own)
-  double crossfade_s = 1.0;  // a scene swap's cross-fade from the old scene's last frame
+  uint64_t seed = 0;  // --seed, for scenes the kiosk swaps in (0: each scene's own)
+  double crossfade_s = 1.0;
+  KioskPost* post = nullptr;  // app/kiosk_post.h; null: the loop makes its own (with a kiosk)  // a
+                              // scene swap's cross-fade from the old scene's last frame
 };
 
 struct LoopResult {

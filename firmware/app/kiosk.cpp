@@ -54,7 +54,7 @@ SceneDesc load_scene_by_label(const std::string& label) {
 Kiosk::Kiosk(KioskOptions options, const WallClock& clock, SdNotify* notify)
     : o_(std::move(options)), clock_(clock), notify_(notify) {
   label_ = o_.scene_label;
-  config_scene_ = o_.scene_label;
+  config_scene_ = o_.config_scene.empty() ? o_.scene_label : o_.config_scene;
   brightness_.store(o_.brightness, std::memory_order_relaxed);
   reload_fd_ = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
   wake_fd_ = eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
@@ -64,8 +64,7 @@ Kiosk::Kiosk(KioskOptions options, const WallClock& clock, SdNotify* notify)
   if (o_.schedule.present) {
     // What the schedule says now is what main() started with.
     const ScheduleNow n = evaluate_schedule(o_.schedule, local_time(clock_.now_ms() / 1000));
-    schedule_scene_ = n.scene;
-    if (n.scene >= 0) config_scene_.clear();  // not known: main() showed the schedule's
+    schedule_scene_ = n.scene;  // main() started with the schedule's scene for now
   }
 }
 
@@ -292,8 +291,7 @@ void Kiosk::apply_schedule() {
 
 std::string Kiosk::schedule_text() const {
   std::lock_guard lock(mu_);
-  return describe_schedule(o_.schedule, local_time(clock_.now_ms() / 1000),
-                           config_scene_.empty() ? label_ : config_scene_);
+  return describe_schedule(o_.schedule, local_time(clock_.now_ms() / 1000), config_scene_);
 }
 
 }  // namespace candela

@@ -35,7 +35,10 @@ struct KioskOptions {
   std::string config;     // --config: re-read by `reload` and SIGHUP; empty: none
   std::string cli_scene;  // --scene on the command line (wins over the config's)
   bool test_pattern = false;
-  std::string scene_label;    // what the running scene is called ("default", a path)
+  std::string scene_label;  // what the running scene is called ("default", a path)
+  // The config's (or --scene's) scene, shown outside the schedule's scene
+  // ranges; empty: scene_label.
+  std::string config_scene;
   int steps_per_second = 60;  // the running loop's: a scene with another rate is refused
   Schedule schedule;
   float brightness = 1.0f;

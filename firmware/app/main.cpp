@@ -114,7 +114,22 @@ int main(int argc, char** argv) {
     // What the runtime would work around (a model it replaces with the
     // built-in one, an empty scene) is still an error in the scene file.
     for (const auto& p : problems) std::fprintf(stderr, "candela: error: %s\n", p.c_str());
-    if (!problems.empty()) return 2;
+    // The [schedule]'s scenes too: a kiosk would find a broken one in the evening.
+    bool schedule_ok = true;
+    for (const auto& range : opt.schedule.scenes) {
+      try {
+        for (const auto& p : scene_problems(load_scene_by_label(range.scene))) {
+          std::fprintf(stderr, "candela: error: %s: schedule.scenes.\"%s\": %s\n",
+                       opt.config.c_str(), range.range.c_str(), p.c_str());
+          schedule_ok = false;
+        }
+      } catch (const ConfigError& e) {
+        std::fprintf(stderr, "candela: error: %s: schedule.scenes.\"%s\": %s\n", opt.config.c_str(),
+                     range.range.c_str(), e.what());
+        schedule_ok = false;
+      }
+    }
+    if (!problems.empty() || !schedule_ok) return 2;
     std::printf("%s: OK (%zu elements)\n", desc.file.c_str(), desc.elements.size());
     return 0;
   }
@@ -176,6 +191,7 @@ int main(int argc, char** argv) {
     ko.cli_scene = opt.scene_from_cli ? config_label : std::string();
     ko.test_pattern = opt.test_pattern;
     ko.scene_label = label;
+    ko.config_scene = config_label;
     ko.steps_per_second = desc.steps_per_second;
     ko.schedule = opt.schedule;
     Kiosk kiosk(std::move(ko), wall, &notify);

@@ -316,6 +316,26 @@ TEST_F(KioskSchedule, ScheduledScenesAreShownAtTheirTimes) {
   EXPECT_EQ(loop.taken, 3);
 }
 
+// Started inside a scene range (main() showed that range's scene): the
+// config's scene comes back when the range ends.
+TEST_F(KioskSchedule, StartedInARangeTheConfigSceneComesBack) {
+  KioskOptions o;
+  o.scene_label = "eigen-candle";
+  o.config_scene = "default";
+  o.schedule = parse(kWeek);
+  FakeWallClock clock(utc(2026, 12, 7, 18, 0) * 1000);
+  Kiosk k(std::move(o), clock);
+  FakeLoop loop(k);
+  k.apply_schedule();
+  EXPECT_EQ(loop.taken, 0);  // already showing it
+  EXPECT_NE(k.schedule_text().find("scene eigen-candle (17:00-21:00)"), std::string::npos);
+  clock.set_ms(utc(2026, 12, 7, 23, 40) * 1000);
+  k.apply_schedule();
+  EXPECT_EQ(k.status().scene, "default");
+  EXPECT_FALSE(k.screen_on());
+  EXPECT_EQ(loop.taken, 1);
+}
+
 TEST(KioskCommands, BrightnessAndScreen) {
   KioskOptions o;
   o.scene_label = "default";
