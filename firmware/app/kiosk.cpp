@@ -83,9 +83,34 @@ void Kiosk::start() {
 void Kiosk::stop() {
   stop_.store(true);
   request_reload();  // wakes the thread
+  // Taking each lock once orders stop_ before the waiters' next check.
   { std::lock_guard lock(mu_); }
   built_cv_.notify_all();
+  { std::lock_guard lock(power_mu_); }
+  power_cv_.notify_all();
   if (thread_.joinable()) thread_.join();
+  if (power_thread_.joinable()) power_thread_.join();
+}
+
+void Kiosk::start_power_switch(std::function<std::unique_ptr<ScreenPowerSwitch>()> open) {
+  if (power_thread_.joinable()) return;
+  power_thread_ = std::thread([this, open = std::move(open)] {
+    std::unique_ptr<ScreenPowerSwitch> sw = open();
+    if (!sw) return;
+    int applied = -1;
+    uint64_t seen = 0;
+    while (!stop_.load()) {
+      const bool want = screen_on();
+      if (static_cast<int>(want) != applied) {
+        sw->set_power(want);
+        applied = want ? 1 : 0;
+        power_switched_.fetch_add(1, std::memory_order_release);
+      }
+      std::unique_lock lock(power_mu_);
+      power_cv_.wait(lock, [&] { return power_requests_ != seen || stop_.load(); });
+      seen = power_requests_;
+    }
+  });
 }
 
 void Kiosk::request_reload() {
@@ -132,6 +157,11 @@ void Kiosk::set_screen(bool on, const char* why) {
   if (screen_on_.exchange(on, std::memory_order_acq_rel) != on)
     LOG_INFO("screen %s (%s)", on ? "on" : "off", why);
   wake_loop();
+  {
+    std::lock_guard lock(power_mu_);
+    ++power_requests_;
+  }
+  power_cv_.notify_all();
 }
 
 KioskStatus Kiosk::status() const {

@@ -16,6 +16,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -24,6 +25,7 @@
 
 #include "app/schedule.h"
 #include "core/clock.h"
+#include "display/cec_switch.h"
 #include "input/kiosk_control.h"
 #include "scene/scene_file.h"
 
@@ -94,6 +96,14 @@ class Kiosk final : public KioskControl {
   // Also the screen commands' path (the schedule uses it).
   void set_screen(bool on, const char* why);
 
+  // A switch for the TV itself beside the display's DPMS (HDMI-CEC:
+  // open_cec_switch), opened and driven on a thread of its own (a CEC call
+  // can take seconds): it follows every screen change, starting with the
+  // state now. `open` returning null: DPMS only.
+  void start_power_switch(std::function<std::unique_ptr<ScreenPowerSwitch>()> open);
+  // Screen changes the switch has carried out (tests).
+  uint64_t power_switched() const { return power_switched_.load(std::memory_order_acquire); }
+
  private:
   void thread_main();
   void wake_loop() const;
@@ -120,6 +130,11 @@ class Kiosk final : public KioskControl {
   int wake_fd_ = -1;    // eventfd: commands -> a frame loop asleep with the screen off
   std::atomic<bool> stop_{false};
   std::thread thread_;
+  std::mutex power_mu_;
+  std::condition_variable power_cv_;
+  uint64_t power_requests_ = 0;  // under power_mu_
+  std::atomic<uint64_t> power_switched_{0};
+  std::thread power_thread_;
 };
 
 // The scene a kiosk starts with: --test-pattern, --scene, the config's, or

@@ -14,6 +14,7 @@
 #include "app/sd_notify.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "display/cec_switch.h"
 #include "display/display.h"
 #include "input/input_hub.h"
 #include "input/mqtt_bridge.h"
@@ -203,6 +204,8 @@ int main(int argc, char** argv) {
       install_reload_handler();
     }
     if (opt.schedule.present) kiosk.apply_schedule();  // off now: off from the first frame
+    // The TV itself too (HDMI-CEC), where candela owns the screen.
+    if (display->name() == "drm") kiosk.start_power_switch(open_cec_switch);
     InputHub inputs(desc.inputs, desc.wind, opt.control);
     inputs.set_volume(desc.sound.volume);
     inputs.set_kiosk(&kiosk);

@@ -9,15 +9,19 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <thread>
 
 #include "app/config_file.h"
 #include "app/kiosk.h"
 #include "core/clock.h"
 #include "core/error.h"
+#include "display/cec_switch.h"
 #include "input/input_hub.h"
 
 namespace candela {
@@ -334,6 +338,81 @@ TEST_F(KioskSchedule, StartedInARangeTheConfigSceneComesBack) {
   EXPECT_EQ(k.status().scene, "default");
   EXPECT_FALSE(k.screen_on());
   EXPECT_EQ(loop.taken, 1);
+}
+
+// A stand-in for HDMI-CEC: records what it was asked, in order.
+class FakeSwitch final : public ScreenPowerSwitch {
+ public:
+  struct Log {
+    std::mutex mu;
+    std::condition_variable cv;
+    std::string calls;
+    // Waits (bounded) until the calls read `want`.
+    bool wait_for(const std::string& want) {
+      std::unique_lock lock(mu);
+      return cv.wait_for(lock, std::chrono::seconds(5), [&] { return calls == want; });
+    }
+  };
+  explicit FakeSwitch(Log* log) : log_(log) {}
+  std::string name() const override { return "fake"; }
+  bool set_power(bool on) override {
+    std::lock_guard lock(log_->mu);
+    log_->calls += on ? "on " : "off ";
+    log_->cv.notify_all();
+    return true;
+  }
+
+ private:
+  Log* log_;
+};
+
+// The screen power path drives the TV switch (CEC) beside DPMS, on its own
+// thread: the state at start, then every change, whoever made it.
+TEST_F(KioskSchedule, ScreenChangesReachTheTvSwitch) {
+  KioskOptions o;
+  o.scene_label = "default";
+  o.schedule = parse("mon = \"07:00-08:00\"\n");
+  FakeWallClock clock(utc(2026, 12, 7, 6, 0) * 1000);
+  Kiosk k(std::move(o), clock);
+  InputHub hub({}, WindSpec{});
+  hub.set_kiosk(&k);
+  k.apply_schedule();
+  FakeSwitch::Log log;
+  k.start_power_switch([&] { return std::make_unique<FakeSwitch>(&log); });
+  EXPECT_TRUE(log.wait_for("off ")) << log.calls;  // scheduled off at start
+  clock.set_ms(utc(2026, 12, 7, 7, 0) * 1000);
+  k.apply_schedule();
+  EXPECT_TRUE(log.wait_for("off on ")) << log.calls;
+  EXPECT_EQ(hub.answer("screen off"), "ok");
+  EXPECT_TRUE(log.wait_for("off on off ")) << log.calls;
+  EXPECT_EQ(hub.answer("screen off"), "ok");  // no change: nothing sent
+  EXPECT_EQ(hub.answer("screen on"), "ok");
+  EXPECT_TRUE(log.wait_for("off on off on ")) << log.calls;
+  k.stop();
+  EXPECT_EQ(k.power_switched(), 4u);
+}
+
+// No switch (no libcec, no adapter): the commands work as before.
+TEST_F(KioskSchedule, NoTvSwitchIsFine) {
+  KioskOptions o;
+  o.scene_label = "default";
+  FakeWallClock clock(0);
+  Kiosk k(std::move(o), clock);
+  k.start_power_switch([] { return std::unique_ptr<ScreenPowerSwitch>(); });
+  InputHub hub({}, WindSpec{});
+  hub.set_kiosk(&k);
+  EXPECT_EQ(hub.answer("screen off"), "ok");
+  EXPECT_EQ(hub.answer("screen"), "off");
+  k.stop();
+  EXPECT_EQ(k.power_switched(), 0u);
+}
+
+// This machine has no CEC adapter: libcec (or its absence) says so and the
+// kiosk goes on with DPMS.
+TEST(Cec, AbsentAdapterGivesNoSwitch) {
+  auto sw = open_cec_switch();
+  if (sw) GTEST_SKIP() << "a CEC adapter is present here: " << sw->name();
+  EXPECT_EQ(open_cec_switch(), nullptr);  // again: still none (and logged once)
 }
 
 TEST(KioskCommands, BrightnessAndScreen) {
