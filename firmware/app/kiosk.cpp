@@ -149,7 +149,7 @@ void Kiosk::thread_main() {
       const std::string r = reload();
       if (r != "ok") LOG_ERROR("reload: %s", r.c_str());
     }
-    if (o_.schedule.present) apply_schedule();
+    apply_schedule();  // nothing without a [schedule] (checked under the lock: reload replaces it)
   }
 }
 
@@ -288,7 +288,7 @@ std::string Kiosk::reload() {
       }
     }
     result = load_and_show(show, true);
-    if (o_.schedule.present) apply_schedule();
+    apply_schedule();
   }
   if (notify_) notify_->reloaded();
   return result;
