@@ -106,6 +106,7 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
     else
       held = std::move(next), scene = held.get();
     do_step();  // the new scene's first state
+    if (s.notify) s.notify->set_scene(desc->file);
     kiosk->scene_built({});
   };
   // Frame 0 shows the state after the first step.

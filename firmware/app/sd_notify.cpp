@@ -111,6 +111,12 @@ void SdNotify::frame_presented(uint64_t frames, Clock::time_point now) {
   }
 }
 
+void SdNotify::set_scene(const std::string& scene) {
+  const size_t slash = scene.find_last_of('/');
+  const char* name = scene.c_str() + (slash == std::string::npos ? 0 : slash + 1);
+  std::snprintf(scene_, sizeof(scene_), "%s", name);
+}
+
 void SdNotify::idle(Clock::time_point now) {
   if (fd_ < 0) return;
   if (!ready_) {  // started with the screen scheduled off: running is ready

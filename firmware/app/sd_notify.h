@@ -45,6 +45,8 @@ class SdNotify {
   int64_t watchdog_interval_ns() const { return ping_ns_; }
   // After each presented frame (frames: how many so far, this one included).
   void frame_presented(uint64_t frames, Clock::time_point now);
+  // A scene swapped in: STATUS= names it from now on (frame loop; no allocation).
+  void set_scene(const std::string& scene);
   // The screen is off on purpose and the loop is alive: watchdog pings only.
   void idle(Clock::time_point now);
   // Any thread (a send on a fixed socket): a reload begins / is done.

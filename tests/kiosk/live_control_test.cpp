@@ -358,6 +358,8 @@ TEST(LiveControl, ReloadAndSighupRereadTheConfig) {
   EXPECT_NE(reloading.find("MONOTONIC_USEC="), std::string::npos) << notify.seen;
   EXPECT_EQ(notify.next_with("READY=1", 60'000), "READY=1") << notify.seen << c.log();
   EXPECT_EQ(json_string(c.ask("state"), "scene"), kScenes + "/default.toml");
+  // systemctl status names the scene now shown (STATUS= about once a second).
+  EXPECT_NE(notify.next_with("STATUS=default.toml: ", 30'000), "") << notify.seen;
   write_file(config, "scene = 5\n");
   const std::string r = c.ask("reload");
   EXPECT_EQ(r, "error: " + config + ": scene: expected a string, got 5; the running settings stay")
