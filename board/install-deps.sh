@@ -14,6 +14,7 @@ runtime=(
   libegl-mesa0 libgl1-mesa-dri libgpiod2 libx11-6
   libasound2  # sound (ALSA)
   libmosquitto1  # MQTT ([mqtt] in the kiosk config)
+  libcec6  # HDMI-CEC screen power (dlopened: without it, DPMS only)
   libcamera-ipa  # pulls in the libcamera library of the release (0.0.3 on bookworm)
 )
 build=(
@@ -23,6 +24,7 @@ build=(
   libeigen3-dev libgpiod-dev gpiod
   libasound2-dev
   libmosquitto-dev
+  libcec-dev  # its headers only (display/cec_switch.cpp dlopens libcec6)
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev zlib1g-dev

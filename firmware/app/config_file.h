@@ -6,10 +6,12 @@
 //   display = "drm"                                    # auto | drm | window | headless
 //   [mqtt]                                             # optional: home automation
 //   host = "192.168.1.10"                              # (input/mqtt_bridge.h, README "MQTT")
+//   [schedule]                                         # optional: app/schedule.h
 #pragma once
 
 #include <string>
 
+#include "app/schedule.h"
 #include "input/mqtt_bridge.h"
 
 namespace candela {
@@ -18,6 +20,7 @@ struct KioskConfig {
   std::string scene;    // empty: the built-in default scene
   std::string display;  // empty: not given (the command line's, or auto)
   MqttSettings mqtt;    // enabled when the file has an [mqtt] table
+  Schedule schedule;    // [schedule] (app/schedule.h): on/off times, fades, night, scenes
 };
 
 KioskConfig load_config_file(const std::string& path);

@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <thread>
 
+#include "app/kiosk.h"
+#include "app/kiosk_post.h"
 #include "app/sd_notify.h"
 #include "core/clock.h"
+#include "core/log.h"
 #include "input/input_hub.h"
 #include "sound/sound_output.h"
 
@@ -23,9 +27,9 @@ class KeysToInputs final : public DisplayEvents {
  private:
   InputHub* inputs_;
 };
-}  // namespace
 
-LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s) {
+LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* owner,
+                    const LoopSettings& s) {
   using Clock = std::chrono::steady_clock;
   StepClock clock(s.steps_per_second);
   const bool lockstep = !display.paced_by_vsync() && !s.realtime;
@@ -38,17 +42,72 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
   step.dt = clock.step_seconds();
   FrameContext frame;
   KeysToInputs keys(s.inputs);
+  Scene* scene = scene_in;
+  std::unique_ptr<Scene> held;  // a swapped-in scene when the caller owns none
+  Kiosk* kiosk = s.kiosk;
+  std::optional<KioskPost> own_post;
+  KioskPost* post = s.post;
+  if (kiosk && !post) {
+    try {
+      post = &own_post.emplace();
+    } catch (const std::exception& e) {
+      LOG_ERROR("kiosk: %s; no brightness or cross-fade", e.what());
+    }
+  }
+  float level = kiosk ? kiosk->target_level() : 1.0f;  // the brightness shown, gliding
+  float fade_left_s = 0.0f;                            // of the cross-fade
+  bool screen_on = true;
+  uint64_t fps_frames = 0;
+  auto fps_since = Clock::now();
 
   auto do_step = [&] {
     step.step = clock.steps();
     step.time = clock.seconds();
-    scene.update(step);
+    scene->update(step);
     if (s.sound) {
-      SoundCue cue = scene.sound_cue();
+      SoundCue cue = scene->sound_cue();
       if (s.inputs) cue.volume = s.inputs->volume();  // the `volume` commands' (an atomic)
       s.sound->push(cue);
     }
     clock.tick();
+  };
+  // A scene the kiosk hands over: built here (its GL work needs this
+  // thread's context), between two frames; the old one's last frame is
+  // kept for the cross-fade, so no frame is black.
+  auto swap_scene = [&] {
+    std::unique_ptr<SceneDesc> desc = kiosk->take_scene();
+    if (!desc) return;
+    std::unique_ptr<Scene> next;
+    std::string error;
+    try {
+      next = std::make_unique<Scene>(*desc, s.seed, s.stop);
+      if (next->element_count() == 0) error = desc->file + ": no element could be created";
+    } catch (const std::exception& e) {
+      error = desc->file + ": " + e.what();
+    }
+    if (!error.empty()) {
+      LOG_ERROR("scene: %s; the running scene stays", error.c_str());
+      kiosk->scene_built(error);
+      return;
+    }
+    if (post && screen_on && result.frames > 0 && s.crossfade_s > 0) {
+      display.begin_frame();
+      frame.width = display.width();
+      frame.height = display.height();
+      RenderTarget& old = post->snapshot_target(frame.width, frame.height);
+      if (old.complete()) {
+        old.bind();
+        scene->draw(frame);  // the old scene, as it was last shown
+        fade_left_s = static_cast<float>(s.crossfade_s);
+      }
+    }
+    if (owner)
+      *owner = std::move(next), scene = owner->get();
+    else
+      held = std::move(next), scene = held.get();
+    do_step();  // the new scene's first state
+    if (s.notify) s.notify->set_scene(desc->file);
+    kiosk->scene_built({});
   };
   // Frame 0 shows the state after the first step.
   do_step();
@@ -60,8 +119,32 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
       result.quit_requested = true;
       break;
     }
-    if (s.inputs) s.inputs->drain(scene.wind());
+    if (kiosk) {
+      if (kiosk->scene_waiting()) swap_scene();
+      if (kiosk->screen_on() != screen_on) {
+        screen_on = !screen_on;
+        display.set_screen_power(screen_on);
+        fps_frames = 0;
+        fps_since = Clock::now();
+        if (screen_on) {
+          prev_begin = Clock::now();  // no catching up on the time spent off
+          level = 0.0f;               // glides up from black
+        } else {
+          kiosk->set_fps(0.0f);
+        }
+      }
+      if (!screen_on) {
+        // Nothing drawn or presented, the animation paused: asleep until a
+        // command wakes it (or a quarter second, for signals and pings).
+        if (s.inputs) s.inputs->drain(scene->wind());
+        if (s.notify) s.notify->idle(Clock::now());
+        kiosk->wait_for_wake(250);
+        continue;
+      }
+    }
+    if (s.inputs) s.inputs->drain(scene->wind());
     const auto begin = Clock::now();
+    const double since_ms = std::chrono::duration<double, std::milli>(begin - prev_begin).count();
     if (result.frames > 0) {
       const int due =
           lockstep ? steps_per_frame
@@ -77,9 +160,18 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
     frame.frame = result.frames;
     frame.step = clock.steps() - 1;
     if (s.inputs)
-      s.inputs->publish(clock.steps(), result.frames, scene.wind().sample(Vec3{}),
-                        scene.candles_lit());
-    scene.draw(frame);
+      s.inputs->publish(clock.steps(), result.frames, scene->wind().sample(Vec3{}),
+                        scene->candles_lit());
+    scene->draw(frame);
+    if (post) {
+      // The glide: the whole range in a quarter second (no flash, no lag).
+      const float dt = lockstep ? 1.0f / static_cast<float>(fps)
+                                : static_cast<float>(std::min(since_ms, 250.0) / 1000.0);
+      const float target = kiosk->target_level();
+      level += std::clamp(target - level, -4.0f * dt, 4.0f * dt);
+      fade_left_s = std::max(0.0f, fade_left_s - dt);
+      post->draw(s.crossfade_s > 0 ? fade_left_s / static_cast<float>(s.crossfade_s) : 0.0f, level);
+    }
     display.present();
     const auto end = Clock::now();
     const double work = std::chrono::duration<double, std::milli>(end - begin).count();
@@ -90,12 +182,30 @@ LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s)
     }
     last_present = end;
     ++result.frames;
+    if (kiosk) {
+      ++fps_frames;
+      const double window = std::chrono::duration<double>(end - fps_since).count();
+      if (window >= 1.0) {
+        kiosk->set_fps(static_cast<float>(static_cast<double>(fps_frames) / window));
+        fps_frames = 0;
+        fps_since = end;
+      }
+    }
     // Only here, after a present: a loop stuck anywhere stops the watchdog pings.
     if (s.notify) s.notify->frame_presented(result.frames, end);
     if (self_paced) std::this_thread::sleep_until(begin + frame_period);
   }
   result.steps = clock.steps();
   return result;
+}
+}  // namespace
+
+LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& s) {
+  return run_loop(display, &scene, nullptr, s);
+}
+
+LoopResult run_frame_loop(Display& display, std::unique_ptr<Scene>& scene, const LoopSettings& s) {
+  return run_loop(display, scene.get(), &scene, s);
 }
 
 }  // namespace candela

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 
 #include "app/frame_stats.h"
 #include "display/display.h"
@@ -14,6 +15,8 @@
 namespace candela {
 
 class InputHub;
+class Kiosk;
+class KioskPost;
 class SdNotify;
 class SoundOutput;
 
@@ -31,6 +34,13 @@ struct LoopSettings {
   InputHub* inputs = nullptr;    // sensors, camera, control socket: drained once per frame
   SdNotify* notify = nullptr;    // systemd READY/WATCHDOG/STATUS after presented frames
   SoundOutput* sound = nullptr;  // gets every step's Scene::sound_cue() (sound/sound_output.h)
+  // Live control (app/kiosk.h): scene swaps, brightness, screen off. Null:
+  // none (the loop then draws exactly what it always did).
+  Kiosk* kiosk = nullptr;
+  uint64_t seed = 0;  // --seed, for scenes the kiosk swaps in (0: each scene's own)
+  double crossfade_s = 1.0;
+  KioskPost* post = nullptr;  // app/kiosk_post.h; null: the loop makes its own (with a kiosk)  // a
+                              // scene swap's cross-fade from the old scene's last frame
 };
 
 struct LoopResult {
@@ -40,5 +50,9 @@ struct LoopResult {
 };
 
 LoopResult run_frame_loop(Display& display, Scene& scene, const LoopSettings& settings);
+// As above, owning the scene: a swap (LoopSettings::kiosk) replaces it, so
+// the old one's memory goes when its cross-fade begins.
+LoopResult run_frame_loop(Display& display, std::unique_ptr<Scene>& scene,
+                          const LoopSettings& settings);
 
 }  // namespace candela

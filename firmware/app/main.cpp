@@ -9,10 +9,12 @@
 #include <vector>
 
 #include "app/frame_loop.h"
+#include "app/kiosk.h"
 #include "app/options.h"
 #include "app/sd_notify.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "display/cec_switch.h"
 #include "display/display.h"
 #include "input/input_hub.h"
 #include "input/mqtt_bridge.h"
@@ -23,9 +25,15 @@
 namespace {
 std::atomic<bool> g_stop{false};
 volatile std::sig_atomic_t g_signal = 0;
+candela::Kiosk* volatile g_kiosk = nullptr;  // set while SIGHUP means "reload"
 void on_signal(int sig) {
   g_signal = sig;
   g_stop = true;
+}
+// With --config, SIGHUP re-reads it (the kiosk's reload; async-signal-safe:
+// an eventfd write).
+void on_reload_signal(int) {
+  if (candela::Kiosk* k = g_kiosk) k->request_reload();
 }
 
 // SIGTERM (systemd), SIGINT (Ctrl-C) and SIGHUP (a closed terminal) end the
@@ -34,6 +42,7 @@ void on_signal(int sig) {
 // A second one of them kills at once (SA_RESETHAND), for a stuck shutdown.
 // SIGPIPE is ignored: a write to a gone reader (ffmpeg, a control client)
 // returns EPIPE and is reported, instead of killing the display silently.
+// With --config (a kiosk), SIGHUP reloads instead (install_reload_handler).
 void install_signal_handlers() {
   struct sigaction sa {};
   sa.sa_handler = on_signal;
@@ -41,6 +50,13 @@ void install_signal_handlers() {
   sa.sa_flags = SA_RESETHAND;
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &sa, nullptr);
   std::signal(SIGPIPE, SIG_IGN);
+}
+void install_reload_handler() {
+  struct sigaction sa {};
+  sa.sa_handler = on_reload_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  sigaction(SIGHUP, &sa, nullptr);
 }
 
 const char* signal_name(int sig) {
@@ -67,11 +83,29 @@ int main(int argc, char** argv) {
   }
 
   install_signal_handlers();
+  // The kiosk's clock (the [schedule]'s): the system's, or a test's.
+  SystemWallClock system_clock;
+  std::unique_ptr<ScaledWallClock> test_clock;
+  if (opt.clock_start_ms >= 0)
+    test_clock = std::make_unique<ScaledWallClock>(opt.clock_start_ms, opt.clock_scale);
+  const WallClock& wall = test_clock ? static_cast<const WallClock&>(*test_clock) : system_clock;
+  // What the kiosk calls the scene (`state`, `reload`): a built-in's name or a path.
+  std::string label = opt.test_pattern    ? "test-pattern"
+                      : opt.scene.empty() ? "default"
+                      : opt.scene.find('/') == std::string::npos && !opt.scene.ends_with(".toml")
+                          ? "./" + opt.scene
+                          : opt.scene;
+  const std::string config_label = label;
+  if (opt.schedule.present && !opt.test_pattern && !opt.check) {
+    const ScheduleNow now = evaluate_schedule(opt.schedule, local_time(wall.now_ms() / 1000));
+    if (now.scene >= 0) label = opt.schedule.scenes[static_cast<size_t>(now.scene)].scene;
+  }
   SceneDesc desc;
   try {
-    desc = opt.test_pattern    ? load_builtin_scene("test-pattern")
-           : opt.scene.empty() ? load_builtin_scene("default")
-                               : load_scene_file(opt.scene);
+    desc = opt.test_pattern                              ? load_builtin_scene("test-pattern")
+           : opt.scene.empty() && label == "default"     ? load_builtin_scene("default")
+           : label == config_label && !opt.scene.empty() ? load_scene_file(opt.scene)
+                                                         : load_scene_by_label(label);
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "candela: %s\n", e.what());
     return 2;
@@ -81,7 +115,22 @@ int main(int argc, char** argv) {
     // What the runtime would work around (a model it replaces with the
     // built-in one, an empty scene) is still an error in the scene file.
     for (const auto& p : problems) std::fprintf(stderr, "candela: error: %s\n", p.c_str());
-    if (!problems.empty()) return 2;
+    // The [schedule]'s scenes too: a kiosk would find a broken one in the evening.
+    bool schedule_ok = true;
+    for (const auto& range : opt.schedule.scenes) {
+      try {
+        for (const auto& p : scene_problems(load_scene_by_label(range.scene))) {
+          std::fprintf(stderr, "candela: error: %s: schedule.scenes.\"%s\": %s\n",
+                       opt.config.c_str(), range.range.c_str(), p.c_str());
+          schedule_ok = false;
+        }
+      } catch (const ConfigError& e) {
+        std::fprintf(stderr, "candela: error: %s: schedule.scenes.\"%s\": %s\n", opt.config.c_str(),
+                     range.range.c_str(), e.what());
+        schedule_ok = false;
+      }
+    }
+    if (!problems.empty() || !schedule_ok) return 2;
     std::printf("%s: OK (%zu elements)\n", desc.file.c_str(), desc.elements.size());
     return 0;
   }
@@ -123,7 +172,7 @@ int main(int argc, char** argv) {
       desc = load_builtin_scene("default");
       scene_ptr = std::make_unique<Scene>(desc, opt.seed, &g_stop);
     }
-    Scene& scene = *scene_ptr;
+    if (desc.file == "<built-in default>" && label != "default") label = "default";
     if (g_stop) {
       LOG_INFO("stopped by %s while the scene was built", signal_name(g_signal));
       if (sound) sound->finish();
@@ -138,21 +187,46 @@ int main(int argc, char** argv) {
     ls.stop = &g_stop;
     ls.realtime = opt.realtime;
     ls.stats = &stats;
+    KioskOptions ko;
+    ko.config = opt.config;
+    ko.cli_scene = opt.scene_from_cli ? config_label : std::string();
+    ko.test_pattern = opt.test_pattern;
+    ko.scene_label = label;
+    ko.config_scene = config_label;
+    ko.steps_per_second = desc.steps_per_second;
+    ko.schedule = opt.schedule;
+    Kiosk kiosk(std::move(ko), wall, &notify);
+    // A thread only where there is something to watch: SIGHUP with a
+    // config to re-read, or a schedule.
+    if (!opt.config.empty() || opt.schedule.present) kiosk.start();
+    if (!opt.config.empty()) {
+      g_kiosk = &kiosk;
+      install_reload_handler();
+    }
+    if (opt.schedule.present) kiosk.apply_schedule();  // off now: off from the first frame
+    // The TV itself too (HDMI-CEC), where candela owns the screen.
+    if (display->name() == "drm") kiosk.start_power_switch(open_cec_switch);
     InputHub inputs(desc.inputs, desc.wind, opt.control);
     inputs.set_volume(desc.sound.volume);
+    inputs.set_kiosk(&kiosk);
     inputs.start();
     // Off unless the config has [mqtt]: nothing connects or listens then.
     std::unique_ptr<MqttBridge> mqtt;
     if (opt.mqtt.enabled) {
+      opt.mqtt.scenes = builtin_scene_names();
       mqtt = std::make_unique<MqttBridge>(opt.mqtt, inputs);
       mqtt->start();
     }
     ls.inputs = &inputs;
     ls.notify = &notify;
     ls.sound = sound.get();
+    ls.kiosk = &kiosk;
+    ls.seed = opt.seed;
     const double cpu0 = process_cpu_seconds();
-    const LoopResult r = run_frame_loop(*display, scene, ls);
+    const LoopResult r = run_frame_loop(*display, scene_ptr, ls);
     notify.stopping();
+    g_kiosk = nullptr;
+    kiosk.stop();
     const double cpu = process_cpu_seconds() - cpu0;
     if (mqtt) mqtt->stop();      // "offline" on the availability topic
     if (sound) sound->finish();  // the .wav complete before the video muxes it

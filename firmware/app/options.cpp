@@ -1,5 +1,7 @@
 #include "app/options.h"
 
+#include <time.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <cstdio>
@@ -83,6 +85,14 @@ int parse_options(int argc, char** argv, Options& o) {
   app.add_option("--control", o.control,
                  "Listen for wind commands and state queries on this UNIX socket (mode 0600); "
                  "see README");
+  std::string clock_start;
+  app.add_option("--clock-start", clock_start,
+                 "Testing a [schedule]: the kiosk's clock starts at this local time, "
+                 "YYYY-MM-DDTHH:MM[:SS] (default: the system's clock)");
+  app.add_option("--clock-scale", o.clock_scale,
+                 "Testing a [schedule]: the kiosk's clock runs this many times as fast "
+                 "(1 to 100000; with --clock-start)")
+      ->check(CLI::Range(1.0, 100000.0));
   bool no_vsync = false;
   app.add_flag("--no-vsync", no_vsync, "Do not wait for vertical blank (window)");
   try {
@@ -91,6 +101,19 @@ int parse_options(int argc, char** argv, Options& o) {
     return app.exit(e);
   }
   o.display.vsync = !no_vsync;
+  o.scene_from_cli = !o.scene.empty();
+  if (!clock_start.empty()) {
+    struct tm tm {};
+    const char* end = strptime(clock_start.c_str(), "%Y-%m-%dT%H:%M", &tm);
+    if (end && *end == ':') end = strptime(end, ":%S", &tm);
+    if (!end || *end)
+      return usage_error("--clock-start", "a local time YYYY-MM-DDTHH:MM[:SS]", clock_start);
+    tm.tm_isdst = -1;
+    o.clock_start_ms = static_cast<int64_t>(mktime(&tm)) * 1000;
+  } else if (app.count("--clock-scale")) {
+    std::fprintf(stderr, "candela: --clock-scale needs --clock-start\n");
+    return 2;
+  }
   if (!o.config.empty()) {
     KioskConfig c;
     try {
@@ -102,6 +125,7 @@ int parse_options(int argc, char** argv, Options& o) {
     if (o.scene.empty() && !o.test_pattern) o.scene = c.scene;
     if (!c.display.empty() && app.count("--display") == 0) o.display.kind = c.display;
     o.mqtt = std::move(c.mqtt);
+    o.schedule = std::move(c.schedule);
   }
   if (!size.empty()) {
     const std::optional<WxH> s = parse_wxh(size, {16, 16}, {16384, 16384});

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "app/schedule.h"
 #include "display/display.h"
 #include "input/mqtt_bridge.h"
 
@@ -24,6 +25,12 @@ struct Options {
   std::string log_level = "info";
   std::string control;  // control socket path (firmware/input/control_channel.h); empty: none
   MqttSettings mqtt;    // the --config file's [mqtt] (off without one)
+  bool scene_from_cli = false;  // --scene was given (wins over the config's, also on reload)
+  Schedule schedule;            // the --config file's [schedule] (absent: always on)
+  // The schedule's clock: the system's, or (testing a schedule) one that
+  // starts at --clock-start (local time) and runs --clock-scale times as fast.
+  int64_t clock_start_ms = -1;  // -1: the system's clock
+  double clock_scale = 1.0;
 };
 
 // Parses argv. Returns -1 to go on, or an exit status (after --help, or a

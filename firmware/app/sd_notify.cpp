@@ -1,5 +1,6 @@
 #include "app/sd_notify.h"
 
+#include <time.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -108,6 +109,38 @@ void SdNotify::frame_presented(uint64_t frames, Clock::time_point now) {
     status_since_ = now;
     status_frames_ = frames;
   }
+}
+
+void SdNotify::set_scene(const std::string& scene) {
+  const size_t slash = scene.find_last_of('/');
+  const char* name = scene.c_str() + (slash == std::string::npos ? 0 : slash + 1);
+  std::snprintf(scene_, sizeof(scene_), "%s", name);
+}
+
+void SdNotify::idle(Clock::time_point now) {
+  if (fd_ < 0) return;
+  if (!ready_) {  // started with the screen scheduled off: running is ready
+    ready_ = true;
+    status_since_ = now;
+    send("READY=1\nSTATUS=screen off", 25);
+  }
+  if (ping_ns_ <= 0 || now < next_ping_) return;
+  next_ping_ = now + std::chrono::nanoseconds(ping_ns_);
+  send("WATCHDOG=1", 10);
+}
+
+void SdNotify::reloading() {
+  if (fd_ < 0) return;
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  char msg[96];
+  send(msg, std::snprintf(msg, sizeof(msg), "RELOADING=1\nMONOTONIC_USEC=%llu",
+                          static_cast<unsigned long long>(ts.tv_sec) * 1000000ULL +
+                              static_cast<unsigned long long>(ts.tv_nsec) / 1000ULL));
+}
+
+void SdNotify::reloaded() {
+  if (fd_ >= 0) send("READY=1", 7);
 }
 
 void SdNotify::stopping() {

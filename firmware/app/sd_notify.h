@@ -8,6 +8,10 @@
 //              WATCHDOG_USEC/2: a hung GPU or loop stops the pings and
 //              systemd restarts it
 //   STATUS=    the scene and the frame rate, about once a second
+//   RELOADING=1 (with MONOTONIC_USEC=) when a reload (SIGHUP, `reload`)
+//              begins, READY=1 again when it is done
+//   WATCHDOG=1 also while the screen is switched off on purpose (the loop
+//              then sleeps but is alive)
 //   STOPPING=1 when the loop ends
 // Sends are non-blocking (MSG_DONTWAIT) from fixed buffers: nothing in the
 // frame loop allocates or waits. Without $NOTIFY_SOCKET it does nothing.
@@ -41,6 +45,13 @@ class SdNotify {
   int64_t watchdog_interval_ns() const { return ping_ns_; }
   // After each presented frame (frames: how many so far, this one included).
   void frame_presented(uint64_t frames, Clock::time_point now);
+  // A scene swapped in: STATUS= names it from now on (frame loop; no allocation).
+  void set_scene(const std::string& scene);
+  // The screen is off on purpose and the loop is alive: watchdog pings only.
+  void idle(Clock::time_point now);
+  // Any thread (a send on a fixed socket): a reload begins / is done.
+  void reloading();
+  void reloaded();
   void stopping();
 
  private:

@@ -60,6 +60,14 @@ class Display {
   virtual bool poll_events(DisplayEvents& events) = 0;
   // Vblanks that passed without a new frame, or -1 where the backend cannot tell.
   virtual int64_t missed_vblanks() const { return -1; }
+  // Switches the screen itself off or on (the frame loop then stops or
+  // resumes presenting). DRM: the CRTC inactive (atomic) or the connector's
+  // DPMS off (legacy); elsewhere nothing to switch. Never throws: a refusal
+  // is logged. Returns whether the screen was really switched.
+  virtual bool set_screen_power(bool on) {
+    (void)on;
+    return false;
+  }
   // Waits until everything written so far is on disk (headless). Throws on I/O failure.
   virtual void finish() {}
 };

@@ -142,9 +142,14 @@ class DrmDisplay final : public Display {
       gbm_surface_release_buffer(surface_, bo);
       throw RuntimeError("drm: cannot make a framebuffer for a GBM buffer");
     }
-    if (presented_ == 0) {
+    if (presented_ == 0 || needs_modeset_) {
+      // First frame, or the screen back on after set_screen_power(false):
+      // the old front buffer is off the screen and goes back to GBM.
+      if (front_) gbm_surface_release_buffer(surface_, front_);
+      front_ = nullptr;
       modeset(fb);
       front_ = bo;
+      needs_modeset_ = false;
     } else {
       // One flip in flight at a time: committing while one is pending gives
       // EBUSY. Waiting here, not after the commit, lets the next frame render
@@ -157,6 +162,48 @@ class DrmDisplay final : public Display {
   }
 
   bool poll_events(DisplayEvents&) override { return true; }
+
+  // Off: the flip in flight completes, then the CRTC goes inactive with the
+  // plane detached (atomic) or the connector's DPMS goes Off (legacy); the
+  // monitor sees no signal and sleeps. On: the next present() sets the mode
+  // again (atomic) or DPMS On and flips as before (legacy).
+  bool set_screen_power(bool on) override {
+    if (on == screen_on_) return true;
+    try {
+      wait_for_flip();
+    } catch (const std::exception& e) {
+      LOG_WARN("%s", e.what());
+    }
+    if (presented_ == 0) {  // nothing shown yet: the first present() sets the mode
+      screen_on_ = on;
+      return true;
+    }
+    bool done = false;
+    if (out_.atomic) {
+      if (!on) {
+        const KmsPropertyIds& p = out_.props;
+        req_.clear();
+        req_.add(out_.crtc_id, p.crtc_active, 0);
+        req_.add(out_.plane_id, p.plane_fb_id, 0);
+        req_.add(out_.plane_id, p.plane_crtc_id, 0);
+        done = req_.commit(out_.fd, DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr) == 0;
+        if (!done)
+          LOG_WARN("drm: switching the CRTC off failed (%s); trying DPMS",
+                   errno_string(errno).c_str());
+      } else {
+        done = true;  // present() modesets (ACTIVE=1) with the next frame
+      }
+      if (done) needs_modeset_ = !on ? true : needs_modeset_;
+    }
+    if (!done) done = set_dpms(on);
+    if (done) {
+      screen_on_ = on;
+      resync_sequence_ = true;
+      LOG_INFO("drm: screen %s (%s)", on ? "on" : "off",
+               out_.atomic ? "CRTC ACTIVE" : "connector DPMS");
+    }
+    return done;
+  }
 
   void finish() override { wait_for_flip(); }
 
@@ -293,6 +340,31 @@ class DrmDisplay final : public Display {
              out_.connector_name.c_str());
   }
 
+  // Legacy DPMS through the connector's "DPMS" property.
+  bool set_dpms(bool on) {
+    drmModeObjectProperties* props =
+        drmModeObjectGetProperties(out_.fd, out_.connector_id, DRM_MODE_OBJECT_CONNECTOR);
+    uint32_t dpms = 0;
+    for (uint32_t i = 0; props && i < props->count_props && !dpms; ++i) {
+      drmModePropertyRes* p = drmModeGetProperty(out_.fd, props->props[i]);
+      if (p && std::strcmp(p->name, "DPMS") == 0) dpms = p->prop_id;
+      drmModeFreeProperty(p);
+    }
+    drmModeFreeObjectProperties(props);
+    if (!dpms) {
+      LOG_WARN("drm: %s has no DPMS property; the screen stays lit (showing black)",
+               out_.connector_name.c_str());
+      return false;
+    }
+    if (drmModeConnectorSetProperty(out_.fd, out_.connector_id, dpms,
+                                    on ? DRM_MODE_DPMS_ON : DRM_MODE_DPMS_OFF) != 0) {
+      LOG_WARN("drm: DPMS %s on %s failed: %s", on ? "On" : "Off", out_.connector_name.c_str(),
+               errno_string(errno).c_str());
+      return false;
+    }
+    return true;
+  }
+
   void add_plane_properties(uint32_t fb) {
     const KmsPropertyIds& p = out_.props;
     const uint32_t plane = out_.plane_id;
@@ -353,11 +425,12 @@ class DrmDisplay final : public Display {
     self->pending_ = nullptr;
     // The flip event carries the vblank counter: a gap of more than one
     // between flips means vblanks went by showing an old frame.
-    if (self->flips_done_ > 0) {
+    if (self->flips_done_ > 0 && !self->resync_sequence_) {
       const uint32_t gap = sequence - self->last_sequence_;
       if (gap > 1) self->missed_ += gap - 1;
     }
     self->last_sequence_ = sequence;
+    self->resync_sequence_ = false;
     ++self->flips_done_;
   }
 
@@ -418,6 +491,9 @@ class DrmDisplay final : public Display {
   gbm_bo* pending_ = nullptr;  // queued to flip at the next vblank
   bool flip_pending_ = false;
   bool logged_plain_fb_ = false;
+  bool screen_on_ = true;
+  bool needs_modeset_ = false;    // the CRTC was switched off: the next present() modesets
+  bool resync_sequence_ = false;  // the vblank counter jumps over an off period
   uint64_t presented_ = 0;
   uint64_t flips_done_ = 0;
   uint32_t last_sequence_ = 0;

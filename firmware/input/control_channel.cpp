@@ -22,8 +22,9 @@
 namespace candela {
 
 const char* const kControlHelp =
-    "commands: gust SIDE [M/S] | blowout [SIDE] [M/S] | wind X Z | calm | volume [0..1] | state | "
-    "ping | help "
+    "commands: gust SIDE [M/S] | blowout [SIDE] [M/S] | wind X Z | calm | volume [0..1] | "
+    "scene NAME|PATH | brightness [0..1] | screen [on|off] | reload | schedule | state | ping | "
+    "help "
     "(SIDE: left right front back)";
 
 namespace {
@@ -92,21 +93,50 @@ ControlCommand parse_control_command(std::string_view line, const WindSpec& wind
   ControlCommand c;
   if (w.empty()) return error("empty command; " + std::string(kControlHelp));
   const std::string_view verb = w[0];
-  if (verb == "state" || verb == "ping" || verb == "help") {
+  if (verb == "state" || verb == "ping" || verb == "help" || verb == "reload" ||
+      verb == "schedule") {
     if (w.size() != 1) return error(echo(verb) + " takes no arguments");
-    c.kind = verb == "state"  ? ControlCommand::Kind::kState
-             : verb == "ping" ? ControlCommand::Kind::kPing
-                              : ControlCommand::Kind::kHelp;
+    c.kind = verb == "state"      ? ControlCommand::Kind::kState
+             : verb == "ping"     ? ControlCommand::Kind::kPing
+             : verb == "reload"   ? ControlCommand::Kind::kReload
+             : verb == "schedule" ? ControlCommand::Kind::kSchedule
+                                  : ControlCommand::Kind::kHelp;
     return c;
   }
-  if (verb == "volume") {
-    c.kind = ControlCommand::Kind::kVolume;
+  if (verb == "volume" || verb == "brightness") {
+    const bool vol = verb == "volume";
+    c.kind = vol ? ControlCommand::Kind::kVolume : ControlCommand::Kind::kBrightness;
     double v = 0;
     if (w.size() == 1) return c;
     if (w.size() != 2 || !parse_number(w[1], 0, 1, v))
-      return error("volume: expected one level in [0, 1] (0 silent, 1 full), e.g. \"volume 0.5\"" +
+      return error(std::string(verb) + ": expected one level in [0, 1] " +
+                   (vol ? "(0 silent, 1 full), e.g. \"volume 0.5\""
+                        : "(0 black, 1 full), e.g. \"brightness 0.5\"") +
                    (w.size() == 2 ? ", got \"" + echo(w[1]) + "\"" : std::string()));
     c.volume = static_cast<float>(v);
+    return c;
+  }
+  if (verb == "screen") {
+    c.kind = ControlCommand::Kind::kScreen;
+    if (w.size() == 1) return c;
+    if (w.size() != 2 || (w[1] != "on" && w[1] != "off"))
+      return error("screen: expected on or off, e.g. \"screen off\"" +
+                   (w.size() == 2 ? ", got \"" + echo(w[1]) + "\"" : std::string()));
+    c.screen = w[1] == "on" ? 1 : 0;
+    return c;
+  }
+  if (verb == "scene") {
+    // The rest of the line, trimmed: a path may hold spaces.
+    std::string_view rest = line.substr(line.find("scene") + 5);
+    while (!rest.empty() && (rest.front() == ' ' || rest.front() == '\t')) rest.remove_prefix(1);
+    while (!rest.empty() && (rest.back() == ' ' || rest.back() == '\t' || rest.back() == '\r'))
+      rest.remove_suffix(1);
+    if (rest.empty())
+      return error(
+          "scene: expected a built-in scene's name (e.g. \"scene eigen-fireplace\") or a scene "
+          "file's path");
+    c.kind = ControlCommand::Kind::kScene;
+    c.scene = std::string(rest);
     return c;
   }
   c.kind = ControlCommand::Kind::kWind;

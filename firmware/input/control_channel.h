@@ -6,7 +6,13 @@
 //   wind X Z            set the steady wind (m/s; x: to the right, z: toward the viewer)
 //   calm                steady wind 0
 //   volume [0..1]       sets the master sound volume (glides, no click); alone: answers it
-//   state               one JSON line: step, frame, wind, events, inputs, ...
+//   scene NAME|PATH     shows a built-in scene (e.g. eigen-fireplace) or a scene file;
+//                       a broken one is refused and the running one stays
+//   brightness [0..1]   the master brightness (glides); alone: answers it
+//   screen [on|off]     switches the screen on or off; alone: answers it
+//   reload              re-reads the --config file and the scene (as SIGHUP does)
+//   schedule            what the [schedule] has on now and what comes next
+//   state               one JSON line: step, frame, wind, events, scene, screen, fps, ...
 //   ping                answers "pong"
 //   help                lists the commands
 // Wind and volume commands answer "ok"; mistakes answer "error: ..." and change nothing.
@@ -25,9 +31,24 @@
 namespace candela {
 
 struct ControlCommand {
-  enum class Kind { kWind, kVolume, kState, kPing, kHelp, kError } kind = Kind::kError;
+  enum class Kind {
+    kWind,
+    kVolume,
+    kState,
+    kPing,
+    kHelp,
+    // The kiosk's (input/kiosk_control.h):
+    kScene,
+    kBrightness,
+    kScreen,
+    kReload,
+    kSchedule,
+    kError
+  } kind = Kind::kError;
   WindEvent event;
-  float volume = -1.0f;  // kVolume: 0..1; below 0: "volume" alone (a question)
+  float volume = -1.0f;  // kVolume, kBrightness: 0..1; below 0: the word alone (a question)
+  int screen = -1;       // kScreen: 1 on, 0 off, -1 a question
+  std::string scene;     // kScene: a built-in scene's name or a scene file's path
   std::string error;     // kError: what was wrong
 };
 ControlCommand parse_control_command(std::string_view line, const WindSpec& wind);

@@ -17,6 +17,7 @@
 #include "input/control_channel.h"
 #include "input/gpio_source.h"
 #include "input/key_input.h"
+#include "input/kiosk_control.h"
 
 namespace candela {
 
@@ -154,12 +155,26 @@ Json frame_step_wind(uint64_t frame, uint64_t step, int32_t x_raw, int32_t z_raw
   return j;
 }
 Json lit_json(int n) { return n >= 0 ? Json(n) : Json(nullptr); }
+// The kiosk's part of `state` and of MQTT's state: scene, brightness,
+// screen, and the error count (errors logged since start).
+void add_kiosk(Json& j, const KioskControl* kiosk) {
+  if (kiosk) {
+    const KioskStatus k = kiosk->status();
+    j["scene"] = k.scene;
+    j["brightness"] = json_decimals(k.brightness, 3);
+    j["screen"] = k.screen_on ? "on" : "off";
+  }
+  j["errors"] = log_error_count();
+}
+double kiosk_fps(const KioskControl* kiosk) { return kiosk ? kiosk->status().fps : 0.0; }
 }  // namespace
 
 std::string InputHub::state_json() const {
   Json j = frame_step_wind(
       frame_.load(std::memory_order_acquire), step_.load(std::memory_order_relaxed),
       wind_x_.load(std::memory_order_relaxed), wind_z_.load(std::memory_order_relaxed));
+  j["fps"] = json_decimals(kiosk_fps(kiosk_), 1);
+  add_kiosk(j, kiosk_);
   j["events"] = applied_.load(std::memory_order_acquire);
   j["control_events"] = applied_control_.load(std::memory_order_relaxed);
   j["dropped"] = input_queue_.dropped() + camera_queue_.dropped() + mqtt_queue_.dropped() +
@@ -202,13 +217,21 @@ std::string InputHub::state_json() const {
 }
 
 std::string InputHub::summary_json() const {
-  Json j = frame_step_wind(
-      frame_.load(std::memory_order_acquire), step_.load(std::memory_order_relaxed),
-      wind_x_.load(std::memory_order_relaxed), wind_z_.load(std::memory_order_relaxed));
+  // fps with frame and step, before "wind": MQTT republishes on a change of
+  // what follows "wind" only (mqtt_bridge.cpp), not on every frame.
+  Json j;
+  j["frame"] = frame_.load(std::memory_order_acquire);
+  j["step"] = step_.load(std::memory_order_relaxed);
+  j["fps"] = json_decimals(kiosk_fps(kiosk_), 1);
+  j["wind"] = {
+      {"x", json_decimals(Fixed::from_raw(wind_x_.load(std::memory_order_relaxed)).to_double(), 4)},
+      {"z",
+       json_decimals(Fixed::from_raw(wind_z_.load(std::memory_order_relaxed)).to_double(), 4)}};
   j["volume"] = json_decimals(static_cast<double>(volume()), 3);
   j["candles_lit"] = lit_json(candles_lit_.load(std::memory_order_relaxed));
   j["events"] = applied_.load(std::memory_order_acquire);
-  return j.dump();
+  add_kiosk(j, kiosk_);
+  return j.dump(-1, ' ', false, Json::error_handler_t::replace);
 }
 
 std::string InputHub::answer(std::string_view line, Origin origin) {
@@ -234,6 +257,13 @@ std::string InputHub::answer(std::string_view line, Origin origin) {
     case ControlCommand::Kind::kState:
       // The inputs' own status is the input thread's to read.
       return origin == Origin::kMqtt ? summary_json() : state_json();
+    case ControlCommand::Kind::kScene:
+    case ControlCommand::Kind::kBrightness:
+    case ControlCommand::Kind::kScreen:
+    case ControlCommand::Kind::kReload:
+    case ControlCommand::Kind::kSchedule:
+      if (!kiosk_) return "error: this candela has no kiosk control (scene, brightness, screen)";
+      return kiosk_->command(c);
     case ControlCommand::Kind::kPing:
       return "pong";
     case ControlCommand::Kind::kHelp:

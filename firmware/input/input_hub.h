@@ -24,6 +24,7 @@ namespace candela {
 class GpioSource;
 class ControlServer;
 class CameraSource;
+class KioskControl;
 
 class InputHub {
  public:
@@ -66,6 +67,11 @@ class InputHub {
   void set_volume(float v) { volume_.store(v, std::memory_order_relaxed); }
   float volume() const { return volume_.load(std::memory_order_relaxed); }
 
+  // The kiosk's commands (scene, brightness, screen, reload, schedule) and
+  // what `state` says of it; without one those commands answer an error.
+  // Set before start().
+  void set_kiosk(KioskControl* kiosk) { kiosk_ = kiosk; }
+
   uint64_t events_applied() const { return applied_.load(std::memory_order_relaxed); }
 
  private:
@@ -96,6 +102,7 @@ class InputHub {
   std::unique_ptr<std::atomic<uint64_t>[]> applied_by_source_;
   std::atomic<uint64_t> applied_control_{0};
   std::atomic<float> volume_{0.6f};
+  KioskControl* kiosk_ = nullptr;
 };
 
 }  // namespace candela

@@ -194,12 +194,46 @@ void MqttBridge::publish_state(bool force) {
   publish(s_.prefix + "/state", state, true, 0);
 }
 
-std::string MqttBridge::discovery_json(bool gust) const {
+std::string MqttBridge::discovery_json(Entity entity) const {
   using Json = nlohmann::ordered_json;
   const std::string node = mqtt_node_id(s_.prefix);
   const std::string& p = s_.prefix;
   Json j;
-  if (gust) {  // a button: a gust from the front at the scene's [wind] gust_speed
+  if (entity == Entity::kScreen) {  // a switch: the screen on or off
+    j["name"] = "Screen";
+    j["unique_id"] = node + "_screen";
+    j["object_id"] = node + "_screen";
+    j["command_topic"] = p + "/set/screen";
+    j["state_topic"] = p + "/state";
+    j["value_template"] = "{{ value_json.screen }}";
+    j["payload_on"] = "on";
+    j["payload_off"] = "off";
+    j["state_on"] = "on";
+    j["state_off"] = "off";
+    j["icon"] = "mdi:fireplace";
+  } else if (entity == Entity::kBrightness) {  // a number: the master brightness
+    j["name"] = "Brightness";
+    j["unique_id"] = node + "_brightness";
+    j["object_id"] = node + "_brightness";
+    j["command_topic"] = p + "/set/brightness";
+    j["state_topic"] = p + "/state";
+    j["value_template"] = "{{ value_json.brightness }}";
+    j["min"] = 0;
+    j["max"] = 1;
+    j["step"] = 0.01;
+    j["mode"] = "slider";
+    j["icon"] = "mdi:brightness-6";
+  } else if (entity == Entity::kScene) {  // a select: the built-in scenes
+    j["name"] = "Scene";
+    j["unique_id"] = node + "_scene";
+    j["object_id"] = node + "_scene";
+    j["command_topic"] = p + "/set/scene";
+    j["state_topic"] = p + "/state";
+    j["value_template"] = "{{ value_json.scene }}";
+    j["options"] = s_.scenes;
+    j["icon"] = "mdi:candle";
+  } else if (entity ==
+             Entity::kGust) {  // a button: a gust from the front at the scene's [wind] gust_speed
     j["name"] = "Gust";
     j["unique_id"] = node + "_gust";
     j["object_id"] = node + "_gust";
@@ -255,9 +289,14 @@ void MqttBridge::on_connect(int rc) {
   publish(s_.prefix + "/availability", "online", true);
   if (s_.discovery) {
     const std::string node = mqtt_node_id(s_.prefix);
-    publish(s_.discovery_prefix + "/number/" + node + "/volume/config", discovery_json(false),
+    const std::string d = s_.discovery_prefix;
+    publish(d + "/number/" + node + "/volume/config", discovery_json(Entity::kVolume), true);
+    publish(d + "/button/" + node + "/gust/config", discovery_json(Entity::kGust), true);
+    publish(d + "/switch/" + node + "/screen/config", discovery_json(Entity::kScreen), true);
+    publish(d + "/number/" + node + "/brightness/config", discovery_json(Entity::kBrightness),
             true);
-    publish(s_.discovery_prefix + "/button/" + node + "/gust/config", discovery_json(true), true);
+    if (!s_.scenes.empty())
+      publish(d + "/select/" + node + "/scene/config", discovery_json(Entity::kScene), true);
   }
   publish_state(true);
 }

@@ -12,7 +12,10 @@
 //                        last will (the broker sends it if candela vanishes)
 //   DISCOVERY/number/NODE/volume/config  Home Assistant discovery: a volume
 //                        number entity (slider 0..1) on a "Candela" device,
-//   DISCOVERY/button/NODE/gust/config    and a gust button (set/gust "front")
+//   DISCOVERY/button/NODE/gust/config    and a gust button (set/gust "front"),
+//   DISCOVERY/switch/NODE/screen/config  the screen on/off (set/screen on|off),
+//   DISCOVERY/number/NODE/brightness/config  the master brightness (0..1),
+//   DISCOVERY/select/NODE/scene/config   the built-in scenes (set/scene NAME)
 // A broker that is absent, refuses the login, goes away or never answers
 // (given up after the keepalive) is logged once per outage and retried with
 // backoff (1 s doubling to reconnect_max); the frame loop never waits on it
@@ -29,6 +32,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 struct mosquitto;
 struct mosquitto_message;
@@ -50,6 +54,9 @@ struct MqttSettings {
   int reconnect_max_s = 30;  // the backoff's ceiling
   bool discovery = true;     // publish Home Assistant discovery config
   std::string discovery_prefix = "homeassistant";
+  // The scene select's options: the built-in scenes' names (set by the
+  // runtime; empty: no scene select).
+  std::vector<std::string> scenes;
 };
 
 // Reads [mqtt] (password_file resolved against the config's folder, read
@@ -84,7 +91,8 @@ class MqttBridge {
   void on_message(const mosquitto_message* m);
   void publish(const std::string& topic, const std::string& payload, bool retain, int qos = 1);
   void publish_state(bool force);
-  std::string discovery_json(bool gust) const;  // the volume number, or the gust button
+  enum class Entity { kVolume, kGust, kScreen, kBrightness, kScene };
+  std::string discovery_json(Entity entity) const;
   bool wait_stop(int64_t ms);
 
   MqttSettings s_;

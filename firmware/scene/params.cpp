@@ -217,6 +217,13 @@ std::vector<ParamReader> ParamReader::table_array(std::string_view key) {
   return out;
 }
 
+std::vector<std::string> ParamReader::keys() const {
+  std::vector<std::string> out;
+  if (table_)
+    for (const auto& [k, v] : *table_) out.emplace_back(k.str());
+  return out;
+}
+
 void ParamReader::finish() const {
   if (!table_) return;
   for (const auto& [k, v] : *table_) {

@@ -45,6 +45,9 @@ class ParamReader {
   ParamReader table(std::string_view key);
   // An array of tables ([[key]]): one reader per entry, prefixed key[i]; empty if absent.
   std::vector<ParamReader> table_array(std::string_view key);
+  // The table's keys, in the file's order (a table whose keys are data:
+  // the kiosk's [schedule] days and time ranges).
+  std::vector<std::string> keys() const;
   // Throws on the first key that no call asked for.
   void finish() const;
 

@@ -7,9 +7,11 @@ wait is for a message, a log line or an exit, with a deadline). The client is
 paho-mqtt (Debian `python3-paho-mqtt`).
 
   commands      Home Assistant discovery for a volume number entity (the schema's
-                required and used keys, the device, availability), retained
+                required and used keys, the device, availability), a gust button, a
+                screen switch, a brightness number and a scene select; retained
                 "online" and state; set/volume, set/wind, set/gust change the state
-                and the state topic reports it; a bad volume is refused with the
+                and the state topic reports it (set/screen, set/brightness, set/scene
+                too); a bad volume or unknown scene is refused with the
                 parser's message and changes nothing; SIGTERM: "offline", exit 0
   reconnect     the broker stopped: candela runs on (frames advance), logs the loss
                 once; the broker started again: candela reconnects and republishes
@@ -226,8 +228,59 @@ def case_commands():
         check(g.get("command_topic") == PREFIX + "/set/gust" and g.get("payload_press") == "front"
               and g.get("unique_id") and g.get("device") == json.loads(disc).get("device"),
               "the button presses set/gust front, on the same device", g)
+    # The kiosk's entities (issue 16): screen switch, brightness number, scene select.
+    sw = client.wait("homeassistant/switch/%s/screen/config" % node)
+    check(sw is not None, "discovery for a screen switch", candela_log())
+    if sw and disc:
+        w = json.loads(sw)
+        check(w.get("command_topic") == PREFIX + "/set/screen" and w.get("payload_on") == "on"
+              and w.get("payload_off") == "off" and w.get("state_topic") == PREFIX + "/state"
+              and w.get("value_template") == "{{ value_json.screen }}"
+              and w.get("state_on") == "on" and w.get("state_off") == "off"
+              and w.get("unique_id") and w.get("device") == json.loads(disc).get("device"),
+              "the switch commands set/screen on|off and reads value_json.screen", w)
+    br = client.wait("homeassistant/number/%s/brightness/config" % node)
+    check(br is not None, "discovery for a brightness number", candela_log())
+    if br:
+        b = json.loads(br)
+        check(b.get("command_topic") == PREFIX + "/set/brightness" and b.get("min") == 0
+              and b.get("max") == 1 and b.get("value_template") == "{{ value_json.brightness }}"
+              and b.get("unique_id"), "the number commands set/brightness 0..1", b)
+    se = client.wait("homeassistant/select/%s/scene/config" % node)
+    check(se is not None, "discovery for a scene select", candela_log())
+    if se:
+        o = json.loads(se)
+        check(o.get("command_topic") == PREFIX + "/set/scene"
+              and o.get("value_template") == "{{ value_json.scene }}"
+              and "eigen-fireplace" in o.get("options", []) and "default" in o.get("options", [])
+              and not [x for x in o.get("options", []) if "bench" in x] and o.get("unique_id"),
+              "the select offers the built-in scenes (no benchmarks) and commands set/scene", o)
     st = client.wait(PREFIX + "/state")
     check(st is not None and abs(json.loads(st)["volume"] - 0.6) < 1e-3, "state: volume 0.6 at first", st)
+    if st:
+        j = json.loads(st)
+        check(j.get("screen") == "on" and j.get("scene") == "test-pattern" and j.get("brightness") == 1
+              and isinstance(j.get("fps"), (int, float)) and isinstance(j.get("errors"), int),
+              "state: screen, scene, brightness, fps and errors", st)
+    client.send("screen", "off")
+    check(client.wait(PREFIX + "/reply") == "ok", "set/screen off answers ok")
+    check(client.wait(PREFIX + "/state", lambda x: json.loads(x)["screen"] == "off") is not None,
+          "the state reports the screen off")
+    client.send("screen", "on")
+    check(client.wait(PREFIX + "/reply") == "ok", "set/screen on answers ok")
+    client.send("brightness", "0.5")
+    check(client.wait(PREFIX + "/reply") == "ok", "set/brightness 0.5 answers ok")
+    check(client.wait(PREFIX + "/state", lambda x: json.loads(x)["brightness"] == 0.5
+                      and json.loads(x)["screen"] == "on") is not None,
+          "the state reports brightness 0.5, screen on")
+    client.send("scene", "default")
+    check(client.wait(PREFIX + "/reply", timeout=60) == "ok", "set/scene default answers ok")
+    check(client.wait(PREFIX + "/state", lambda x: json.loads(x)["scene"] == "default") is not None,
+          "the state reports the scene")
+    client.send("scene", "no-such")
+    r = client.wait(PREFIX + "/reply")
+    check(r is not None and r.startswith('error: scene "no-such": no such built-in scene'),
+          "an unknown scene is refused", r)
     client.send("volume", "0.25")
     check(client.wait(PREFIX + "/reply") == "ok", "set/volume 0.25 answers ok")
     st = client.wait(PREFIX + "/state", lambda x: abs(json.loads(x)["volume"] - 0.25) < 1e-3)
