@@ -214,7 +214,31 @@ def soak(candela, scene, hours, size, rss_mb, tmp, repeats=False, seed=None):
     return not problems
 
 
+def self_test():
+    """The repeat check on made-up frames: none in noise; a copied stretch
+    (with a little noise on top) found at its length; a walk stuck in a loop."""
+    rng = np.random.default_rng(1)
+    frames = rng.integers(0, 256, size=(5000, 18, 32), dtype=np.uint8)
+    ok = True
+
+    def expect(what, got, want):
+        nonlocal ok
+        print(("ok   " if got == want else "FAIL ") + f"{what}: {got} (expected {want})")
+        ok &= got == want
+    expect("noise: no repeat", longest_repeat_frames(frames), 0)
+    copied = frames.copy()
+    noise = rng.integers(-2, 3, size=(10, 18, 32))
+    copied[4000:4010] = np.clip(copied[1234:1244].astype(int) + noise, 0, 255).astype(np.uint8)
+    expect("a 10-frame stretch copied 2766 frames later", longest_repeat_frames(copied), 10)
+    loop = frames.copy()
+    loop[3000:] = np.resize(frames[2900:3000], (2000, 18, 32))  # period 100 from frame 2900
+    expect("stuck in a 100-frame loop", longest_repeat_frames(loop) >= 1900, True)
+    return 0 if ok else 1
+
+
 def main():
+    if sys.argv[1:] == ["--self-test"]:
+        return self_test()
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("scenes", nargs="*")
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
