@@ -427,6 +427,40 @@ def case_camera_libcamera_vimc():
     c.stop()
 
 
+def cpu_seconds(pid):
+    """User + system CPU time of a whole process (all its threads), in seconds."""
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def case_camera_libcamera_unplugged():
+    """The kiosk's camera, through libcamera, unbound mid-run: the input says
+    so, the display keeps running, and nothing is left spinning on the dead
+    camera (libcamera 0.0.3 is not told and polled its removed nodes in a loop
+    that took the whole vCPU, for as long as the kiosk ran)."""
+    vimc_camera_id()
+    c = Candela("[[input]]\nkind = \"camera\"\nname = \"cam\"\nbackend = \"libcamera\"\n"
+                "device = \"auto\"\n", extra=("--fps", "5"))
+    wait_for("camera frames", lambda: c.input("cam").get("frames", 0) > 3, timeout=90)
+    with open("/sys/bus/platform/drivers/vimc/unbind", "w") as f:
+        f.write("vimc.0")
+    cam = wait_for("the loss to be noticed",
+                   lambda: (lambda i: i if i["status"] != "ok" else None)(c.input("cam")), timeout=30)
+    check("device nodes were removed" in cam["status"], "state says the camera's nodes went: %s" % cam["status"])
+    # CPU of the whole kiosk over 3 s: a 5 fps 32x24 render takes a little;
+    # a thread spinning on the dead nodes took all of the one vCPU.
+    t0, cpu0 = time.monotonic(), cpu_seconds(c.proc.pid)
+    wait_for("3 s of running", lambda: time.monotonic() - t0 >= 3.0, timeout=10)
+    share = (cpu_seconds(c.proc.pid) - cpu0) / (time.monotonic() - t0)
+    check(share < 0.5, "nothing spins on the dead camera: the kiosk used %.0f%% of a CPU" % (100 * share))
+    f0 = c.state()["frame"]
+    wait_for("frames to keep coming", lambda: c.state()["frame"] > f0 + 5, timeout=30)
+    check(c.proc.poll() is None, "the display keeps running")
+    check("device nodes were removed" in c.log_text(), "the log says what happened")
+    c.stop()
+
+
 # --- candela-record ----------------------------------------------------------------
 def png_size(path):
     with open(path, "rb") as f:
