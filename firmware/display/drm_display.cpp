@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <optional>
+#include <thread>
 #include <vector>
 
 #include "core/error.h"
@@ -25,8 +27,17 @@ namespace {
 
 constexpr uint32_t kFormat = GBM_FORMAT_XRGB8888;  // == DRM_FORMAT_XRGB8888
 constexpr int kFlipTimeoutMs = 2000;
+// Without DRM master (another program took the display) the frames are not
+// shown; getting master back is retried after 50 ms, then less and less
+// often, at most 500 ms apart (the frame loop runs at that rate meanwhile).
+constexpr int kFirstRetryMs = 50, kMaxRetryMs = 500;
 
 std::string errno_string(int e) { return std::strerror(e); }
+
+// What the kernel answers a commit, flip or modeset from a client that is no
+// longer DRM master (EACCES; EPERM from some drivers), or while another
+// master's commit holds the CRTC (EBUSY).
+bool is_master_error(int e) { return e == EACCES || e == EPERM || e == EBUSY; }
 
 // An atomic request in fixed storage, committed with the ioctl itself:
 // libdrm's drmModeAtomicCommit copies and sorts the request on the heap on
@@ -115,9 +126,12 @@ class DrmDisplay final : public Display {
     restore_crtc();
     if (presented_ > 0)
       LOG_INFO(
-          "drm: presented %llu frames (1 modeset + %llu page flips completed), %lld vblanks missed",
-          static_cast<unsigned long long>(presented_), static_cast<unsigned long long>(flips_done_),
-          static_cast<long long>(missed_));
+          "drm: presented %llu frames (%llu modeset%s + %llu page flips completed), %lld vblanks "
+          "missed%s",
+          static_cast<unsigned long long>(presented_), static_cast<unsigned long long>(modesets_),
+          modesets_ == 1 ? "" : "s", static_cast<unsigned long long>(flips_done_),
+          static_cast<long long>(missed_),
+          pauses_ ? (", " + std::to_string(pauses_) + " times without DRM master").c_str() : "");
     release();
   }
 
@@ -142,20 +156,37 @@ class DrmDisplay final : public Display {
       gbm_surface_release_buffer(surface_, bo);
       throw RuntimeError("drm: cannot make a framebuffer for a GBM buffer");
     }
-    if (presented_ == 0 || needs_modeset_) {
+    if (paused_) {
+      if (!try_resume(fb)) {
+        gbm_surface_release_buffer(surface_, bo);  // not shown
+        wait_for_retry();
+        return;
+      }
+      if (front_) gbm_surface_release_buffer(surface_, front_);
+      front_ = bo;
+      needs_modeset_ = false;
+    } else if (presented_ == 0 || needs_modeset_) {
       // First frame, or the screen back on after set_screen_power(false):
       // the old front buffer is off the screen and goes back to GBM.
+      if (!modeset(fb)) {
+        const int e = errno;
+        gbm_surface_release_buffer(surface_, bo);
+        pause(e);
+        return;
+      }
       if (front_) gbm_surface_release_buffer(surface_, front_);
-      front_ = nullptr;
-      modeset(fb);
       front_ = bo;
       needs_modeset_ = false;
     } else {
       // One flip in flight at a time: committing while one is pending gives
       // EBUSY. Waiting here, not after the commit, lets the next frame render
       // while this one waits for its vblank.
-      wait_for_flip();
-      queue_flip(fb);
+      if (!wait_for_flip() || !queue_flip(fb)) {
+        const int e = errno;
+        gbm_surface_release_buffer(surface_, bo);
+        pause(e);
+        return;
+      }
       pending_ = bo;
     }
     ++presented_;
@@ -206,6 +237,42 @@ class DrmDisplay final : public Display {
   }
 
   void finish() override { wait_for_flip(); }
+
+  // --- Losing and regaining DRM master ------------------------------------
+  // Another program (a VT switch through logind, a second compositor, a
+  // debugging tool) took DRM master: nothing can be shown until it gives it
+  // back. Candela keeps running (animation, inputs, control socket), renders
+  // at the retry rate and asks for master again with a growing interval.
+  void pause(int e) {
+    paused_ = true;
+    paused_since_ = std::chrono::steady_clock::now();
+    retry_ms_ = kFirstRetryMs;
+    next_retry_ = paused_since_ + std::chrono::milliseconds(retry_ms_);
+    ++pauses_;
+    LOG_WARN(
+        "drm: lost the display on %s (%s: another program holds DRM master): pausing, asking for "
+        "it again at most %d ms apart",
+        out_.connector_name.c_str(), errno_string(e).c_str(), kMaxRetryMs);
+  }
+
+  // Master again and the mode set with this frame: true (then showing it).
+  bool try_resume(uint32_t fb) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_retry_) return false;
+    if ((drmIsMaster(out_.fd) || drmSetMaster(out_.fd) == 0) && modeset(fb)) {
+      paused_ = false;
+      LOG_INFO("drm: DRM master is back after %.1f s: presenting on %s again",
+               std::chrono::duration<double>(now - paused_since_).count(),
+               out_.connector_name.c_str());
+      return true;
+    }
+    retry_ms_ = std::min(retry_ms_ * 2, kMaxRetryMs);
+    next_retry_ = now + std::chrono::milliseconds(retry_ms_);
+    return false;
+  }
+
+  // Paced by the retries while nothing is shown (no vblank to wait for).
+  void wait_for_retry() const { std::this_thread::sleep_until(next_retry_); }
 
  private:
   void init_gbm_egl() {
@@ -314,7 +381,8 @@ class DrmDisplay final : public Display {
     return fb;
   }
 
-  void modeset(uint32_t fb) {
+  // False with errno set when another program holds DRM master.
+  bool modeset(uint32_t fb) {
     if (out_.atomic) {
       const KmsPropertyIds& p = out_.props;
       req_.clear();
@@ -324,20 +392,26 @@ class DrmDisplay final : public Display {
       add_plane_properties(fb);
       // Blocking and without an event: the next present() flips onto it.
       if (req_.commit(out_.fd, DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr) == 0) {
+        ++modesets_;
         LOG_INFO("drm: atomic modeset %s on %s done", describe_mode(out_.mode).c_str(),
                  out_.connector_name.c_str());
-        return;
+        return true;
       }
+      if (is_master_error(errno)) return false;
       LOG_WARN("drm: atomic modeset failed (%s): falling back to legacy modesetting",
                errno_string(errno).c_str());
       out_.atomic = false;
     }
     uint32_t connector = out_.connector_id;
-    if (drmModeSetCrtc(out_.fd, out_.crtc_id, fb, 0, 0, &connector, 1, &out_.mode) != 0)
+    if (drmModeSetCrtc(out_.fd, out_.crtc_id, fb, 0, 0, &connector, 1, &out_.mode) != 0) {
+      if (is_master_error(errno)) return false;
       throw RuntimeError("drm: cannot set mode " + describe_mode(out_.mode) + " on " +
                          out_.connector_name + ": " + errno_string(errno));
+    }
+    ++modesets_;
     LOG_INFO("drm: legacy modeset %s on %s done", describe_mode(out_.mode).c_str(),
              out_.connector_name.c_str());
+    return true;
   }
 
   // Legacy DPMS through the connector's "DPMS" property.
@@ -381,25 +455,32 @@ class DrmDisplay final : public Display {
     req_.add(plane, p.plane_crtc_h, h);
   }
 
-  void queue_flip(uint32_t fb) {
+  // False with errno set when another program holds DRM master.
+  bool queue_flip(uint32_t fb) {
     if (out_.atomic) {
       req_.clear();
       add_plane_properties(fb);
       if (req_.commit(out_.fd, DRM_MODE_ATOMIC_NONBLOCK | DRM_MODE_PAGE_FLIP_EVENT, this) == 0) {
         flip_pending_ = true;
-        return;
+        return true;
       }
+      if (is_master_error(errno)) return false;
       LOG_WARN("drm: atomic page flip failed (%s): falling back to legacy page flips",
                errno_string(errno).c_str());
       out_.atomic = false;
     }
-    if (drmModePageFlip(out_.fd, out_.crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, this) != 0)
+    if (drmModePageFlip(out_.fd, out_.crtc_id, fb, DRM_MODE_PAGE_FLIP_EVENT, this) != 0) {
+      if (is_master_error(errno)) return false;
       throw RuntimeError("drm: page flip on " + out_.connector_name +
                          " failed: " + errno_string(errno));
+    }
     flip_pending_ = true;
+    return true;
   }
 
-  void wait_for_flip() {
+  // False (errno EACCES) when the flip never completed because another
+  // program took DRM master meanwhile; throws on any other failure.
+  bool wait_for_flip() {
     while (flip_pending_) {
       pollfd p{out_.fd, POLLIN, 0};
       const int r = poll(&p, 1, kFlipTimeoutMs);
@@ -409,12 +490,19 @@ class DrmDisplay final : public Display {
       }
       if (r == 0) {
         flip_pending_ = false;  // do not wait for it again
+        if (!drmIsMaster(out_.fd)) {
+          if (pending_) gbm_surface_release_buffer(surface_, pending_);
+          pending_ = nullptr;
+          errno = EACCES;
+          return false;
+        }
         throw RuntimeError("drm: a page flip did not complete within " +
                            std::to_string(kFlipTimeoutMs) + " ms");
       }
       if (drmHandleEvent(out_.fd, &event_context_) != 0)
         throw RuntimeError("drm: reading DRM events failed: " + errno_string(errno));
     }
+    return true;
   }
 
   static void on_page_flip(int, unsigned sequence, unsigned, unsigned, void* data) {
@@ -436,6 +524,10 @@ class DrmDisplay final : public Display {
 
   void restore_crtc() {
     if (presented_ == 0) return;  // never touched the display
+    if (paused_) {
+      LOG_INFO("drm: another program holds the display: leaving CRTC %u as it is", out_.crtc_id);
+      return;
+    }
     int rc;
     std::string what;
     if (saved_crtc_ && saved_crtc_->mode_valid && saved_crtc_->buffer_id) {
@@ -498,6 +590,10 @@ class DrmDisplay final : public Display {
   uint64_t flips_done_ = 0;
   uint32_t last_sequence_ = 0;
   int64_t missed_ = 0;
+  bool paused_ = false;  // DRM master lost: nothing shown until try_resume()
+  int retry_ms_ = kFirstRetryMs;
+  uint64_t pauses_ = 0, modesets_ = 0;
+  std::chrono::steady_clock::time_point paused_since_{}, next_retry_{};
 };
 
 }  // namespace

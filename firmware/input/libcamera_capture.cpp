@@ -4,11 +4,13 @@
 #include "input/libcamera_capture.h"
 
 #include <dirent.h>
+#include <fcntl.h>
 #include <libcamera/libcamera.h>
 #include <linux/videodev2.h>
 #include <poll.h>
 #include <sys/eventfd.h>
 #include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -21,6 +23,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <vector>
 
 #include "core/error.h"
 #include "core/json.h"
@@ -40,6 +43,103 @@ namespace lc = libcamera;
 // getenv() is undefined.
 [[maybe_unused]] const bool kLibcameraLogQuiet = setenv("LIBCAMERA_LOG_LEVELS", "*:ERROR", 0) == 0;
 
+// --- Camera device nodes that libcamera opened -----------------------------------
+// When a camera's driver goes (unplugged, unbound) without libcamera being
+// told (libcamera 0.0.3 misses it: no disconnected signal), its thread keeps
+// polling the dead nodes, which answer POLLERR at once, for ever: it spins a
+// whole core. On a one-core board that starves every other thread (the
+// recorder's preview never finished and the recorder exited minutes late).
+// The nodes libcamera opened are noted here (the device nodes that appear in
+// /proc/self/fd while it enumerates and starts a camera), so that once one is
+// found deleted it can be silenced: the same fd number then refers to the
+// read end of a pipe nobody writes, which never polls ready. The number stays
+// taken (libcamera still owns it and will close it), so nothing else can be
+// given it meanwhile.
+struct NodeFd {
+  int fd;
+  dev_t dev;
+  ino_t ino;
+  bool operator==(const NodeFd& o) const { return fd == o.fd && dev == o.dev && ino == o.ino; }
+};
+
+bool is_camera_node_path(const char* target) {
+  return std::strncmp(target, "/dev/video", 10) == 0 ||
+         std::strncmp(target, "/dev/media", 10) == 0 ||
+         std::strncmp(target, "/dev/v4l-subdev", 15) == 0;
+}
+
+// The open fds of this process that are video, media or sub-device nodes;
+// *deleted: those the kernel has removed from /dev ("/dev/video6 (deleted)").
+std::vector<NodeFd> open_camera_nodes(std::vector<NodeFd>* deleted = nullptr) {
+  std::vector<NodeFd> out;
+  DIR* d = opendir("/proc/self/fd");
+  if (!d) return out;
+  while (dirent* e = readdir(d)) {
+    char target[256];
+    const std::string link = std::string("/proc/self/fd/") + e->d_name;
+    const ssize_t n = readlink(link.c_str(), target, sizeof target - 1);
+    if (n <= 0) continue;
+    target[n] = 0;
+    if (!is_camera_node_path(target)) continue;
+    const int fd = std::atoi(e->d_name);
+    struct stat st {};
+    if (fd == dirfd(d) || fstat(fd, &st) != 0) continue;
+    out.push_back({fd, st.st_dev, st.st_ino});
+    if (deleted && std::strstr(target, " (deleted)")) deleted->push_back(out.back());
+  }
+  closedir(d);
+  return out;
+}
+
+class LibcameraNodes {
+ public:
+  static LibcameraNodes& get() {
+    static auto* nodes = new LibcameraNodes;  // never destroyed: used until exit
+    return *nodes;
+  }
+  // Call with the device nodes open before libcamera opened anything.
+  void note_opened_since(const std::vector<NodeFd>& before) {
+    const auto now = open_camera_nodes();
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const NodeFd& n : now)
+      if (std::find(before.begin(), before.end(), n) == before.end() &&
+          std::find(owned_.begin(), owned_.end(), n) == owned_.end())
+        owned_.push_back(n);
+  }
+  // Silences every node of libcamera's that the kernel removed; how many it
+  // silenced now.
+  int silence_removed() {
+    std::vector<NodeFd> deleted;
+    open_camera_nodes(&deleted);
+    std::lock_guard<std::mutex> lock(mutex_);
+    int removed = 0;
+    for (const NodeFd& n : deleted) {
+      if (std::find(owned_.begin(), owned_.end(), n) == owned_.end()) continue;
+      if (quiet_read_ < 0) {
+        int p[2];
+        if (pipe2(p, O_CLOEXEC) != 0) return removed;
+        quiet_read_ = p[0];
+        quiet_write_ = p[1];  // kept open: a pipe without writers polls POLLHUP
+      }
+      if (dup3(quiet_read_, n.fd, O_CLOEXEC) < 0) continue;
+      ++silenced_;
+      ++removed;
+      owned_.erase(std::find(owned_.begin(), owned_.end(), n));
+    }
+    return removed;
+  }
+  bool any_silenced() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return silenced_ > 0;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<NodeFd> owned_;
+  size_t silenced_ = 0;
+  int quiet_read_ = -1, quiet_write_ = -1;
+};
+
 // libcamera allows one CameraManager per process: the captures share it, and
 // it goes when the last of them does (the next open enumerates afresh).
 std::shared_ptr<lc::CameraManager> shared_manager() {
@@ -47,6 +147,7 @@ std::shared_ptr<lc::CameraManager> shared_manager() {
   static std::weak_ptr<lc::CameraManager> weak;
   std::lock_guard<std::mutex> lock(mutex);
   if (auto cm = weak.lock()) return cm;
+  const auto before = open_camera_nodes();
   std::shared_ptr<lc::CameraManager> cm(new lc::CameraManager, [](lc::CameraManager* m) {
     m->stop();
     delete m;
@@ -54,6 +155,7 @@ std::shared_ptr<lc::CameraManager> shared_manager() {
   if (const int r = cm->start(); r < 0)
     throw RuntimeError(std::string("libcamera: cannot start the camera manager: ") +
                        std::strerror(-r));
+  LibcameraNodes::get().note_opened_since(before);
   weak = cm;
   return cm;
 }
@@ -142,6 +244,8 @@ class LibcameraCapture final : public VideoCapture {
   lc::ControlList pending_controls_;  // applied to the next request queued
   lc::ControlList last_metadata_;     // of the first frame handed out
   bool metadata_seen_ = false;
+  bool nodes_removed_ = false;        // its device nodes went from /dev (silenced)
+  std::vector<NodeFd> nodes_before_;  // camera nodes open before this camera's
 };
 
 LibcameraCapture::LibcameraCapture(const CaptureSettings& s) {
@@ -166,6 +270,7 @@ LibcameraCapture::LibcameraCapture(const CaptureSettings& s) {
     }
     id_ = camera_->id();
     model_ = camera_->properties().get(lc::properties::Model).value_or(id_);
+    nodes_before_ = open_camera_nodes();
     if (const int r = camera_->acquire(); r < 0)
       throw RuntimeError("libcamera: camera \"" + id_ + "\": " +
                          (r == -EBUSY ? std::string("busy (in use by another program)")
@@ -270,6 +375,7 @@ LibcameraCapture::LibcameraCapture(const CaptureSettings& s) {
     if (const int r = camera_->start(&start_controls); r < 0)
       throw RuntimeError("libcamera: camera \"" + id_ + "\": cannot start: " + std::strerror(-r));
     started_ = true;
+    LibcameraNodes::get().note_opened_since(nodes_before_);
     for (auto& r : requests_)
       if (camera_->queueRequest(r.get()) < 0)
         throw RuntimeError("libcamera: camera \"" + id_ + "\": cannot queue a request");
@@ -279,30 +385,18 @@ LibcameraCapture::LibcameraCapture(const CaptureSettings& s) {
   }
 }
 
-// Whether this process holds a video or media device node that is gone from
-// /dev: the kernel unregistered it (unplugged, driver unbound) while the fd
-// stayed open, and the fd's link then reads "/dev/video6 (deleted)".
+// Whether this process holds a camera device node that is gone from /dev:
+// the kernel unregistered it (unplugged, driver unbound) while the fd stayed
+// open, and the fd's link then reads "/dev/video6 (deleted)".
 bool holds_deleted_camera_node() {
-  DIR* d = opendir("/proc/self/fd");
-  if (!d) return false;
-  bool deleted = false;
-  while (dirent* e = readdir(d)) {
-    char target[256];
-    const std::string link = std::string("/proc/self/fd/") + e->d_name;
-    const ssize_t n = readlink(link.c_str(), target, sizeof target - 1);
-    if (n <= 0) continue;
-    target[n] = 0;
-    if ((std::strncmp(target, "/dev/video", 10) == 0 ||
-         std::strncmp(target, "/dev/media", 10) == 0) &&
-        std::strstr(target, " (deleted)"))
-      deleted = true;
-  }
-  closedir(d);
-  return deleted;
+  std::vector<NodeFd> deleted;
+  open_camera_nodes(&deleted);
+  return !deleted.empty();
 }
 
 void LibcameraCapture::close_all() {
-  if (camera_ && started_ && !disconnected_ && (gone_ || stalled_) && holds_deleted_camera_node()) {
+  if (camera_ && started_ && !disconnected_ && (gone_ || stalled_) &&
+      (nodes_removed_ || LibcameraNodes::get().any_silenced() || holds_deleted_camera_node())) {
     // The camera went away but libcamera has not noticed (no udev event
     // reached it). Stopping it now trips an assertion in libcamera 0.0.3
     // (requests still queued in a pipeline whose STREAMOFF failed) that
@@ -441,6 +535,19 @@ VideoCapture::Result LibcameraCapture::next(VideoFrame& frame, int timeout_ms, i
     }
     if (r == 0 || !fds[0].revents) {
       stalled_ = true;  // cleared by the next frame
+      // No frame for a while: if the camera's nodes are gone from /dev while
+      // libcamera was not told, say so now (and stop its thread spinning on
+      // them) rather than after more silent timeouts.
+      if (!disconnected_ && LibcameraNodes::get().silence_removed() > 0) {
+        nodes_removed_ = true;
+        gone_ = true;
+        LOG_WARN(
+            "libcamera: camera \"%s\": its device nodes were removed (unplugged or the driver "
+            "unbound) and libcamera was not told: silenced them",
+            id_.c_str());
+        error_ = "the camera's device nodes were removed (libcamera: \"" + id_ + "\" not told)";
+        return Result::kGone;
+      }
       return Result::kTimeout;
     }
   }
