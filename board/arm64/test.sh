@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Runs an arm64 cross build's tests (board/arm64/cross-build.sh) on this
+# amd64 machine under qemu-user: every unit and headless render test whose
+# program ctest starts through the emulator (CMAKE_CROSSCOMPILING_EMULATOR:
+# the GoogleTest programs and the `candela` command-line cases), then
+# arm64_state_equality (tests/arm64: every built-in scene's animation state
+# bit-identical to the host build's over 10,000 steps, frames within 2 LSB;
+# configured when the cross build was given -DCANDELA_HOST_BUILD_DIR).
+# Tests that run the arm64 programs from a script (python, sh) would need
+# binfmt_misc and are left out; they run in the amd64 builds.
+#   board/arm64/test.sh BUILD_DIR
+set -euo pipefail
+build=${1:?usage: board/arm64/test.sh BUILD_DIR}
+jobs=$(nproc)
+emulator=$(sed -n 's/^CMAKE_CROSSCOMPILING_EMULATOR:[A-Z]*=//p' "$build/CMakeCache.txt")
+[ -n "$emulator" ] || { echo "arm64 test: $build is not a cross build with an emulator" >&2; exit 1; }
+
+# The tests labelled unit or render that ctest runs through the emulator.
+ctest --test-dir "$build" --show-only=json-v1 >"$build/arm64-tests.json"
+picked=$(/usr/bin/python3 - "$build/arm64-tests.json" "$emulator" <<'PY'
+import json, sys
+tests = json.load(open(sys.argv[1]))["tests"]
+picked, skipped = [], 0
+for number, t in enumerate(tests, 1):  # ctest's test numbers (for -I)
+    labels = set()
+    for p in t.get("properties", []):
+        if p["name"] == "LABELS":
+            labels.update(p["value"])
+    if not labels & {"unit", "render"}:
+        continue
+    if t.get("command", [""])[0] == sys.argv[2]:
+        picked.append(str(number))
+    else:
+        skipped += 1
+print(f"arm64 test: {len(picked)} unit/render tests under the emulator; "
+      f"{skipped} run the program from a script and are left out", file=sys.stderr)
+print(",".join(picked))
+PY
+)
+[ -n "$picked" ] || { echo "arm64 test: no unit or render test found in $build" >&2; exit 1; }
+ctest --test-dir "$build" --output-on-failure -j "$jobs" -I "0,0,0,$picked"
+if ctest --test-dir "$build" -N -L arm64 | grep -q 'Total Tests: [1-9]'; then
+  ctest --test-dir "$build" --output-on-failure -L arm64
+else
+  echo "arm64 test: no arm64_state_equality (configure $build with -DCANDELA_HOST_BUILD_DIR=an amd64 build)" >&2
+  exit 1
+fi
