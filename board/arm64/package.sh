@@ -13,8 +13,7 @@ cd "$(dirname "$0")/../.."
 build=${1:?usage: board/arm64/package.sh BUILD_DIR [--out DIR]}
 out=out/deb-arm64
 [ "${2:-}" = --out ] && out=${3:?--out needs a folder}
-grep -q '^CPACK_DEBIAN_PACKAGE_ARCHITECTURE' "$build/CPackConfig.cmake" 2>/dev/null &&
-  grep -q '"arm64"' <(grep '^set(CPACK_DEBIAN_PACKAGE_ARCHITECTURE' "$build/CPackConfig.cmake") ||
+grep -q 'set(CPACK_DEBIAN_PACKAGE_ARCHITECTURE "arm64")' "$build/CPackConfig.cmake" 2>/dev/null ||
   { echo "package: $build is not an arm64 cross build (board/arm64/cross-build.sh)" >&2; exit 1; }
 for t in firmware/candela tools/record/candela-record; do
   [ -x "$build/$t" ] || { echo "package: $build/$t not built (cmake --build $build)" >&2; exit 1; }

@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # Runs an arm64 cross build's tests (board/arm64/cross-build.sh) on this
-# amd64 machine under qemu-user: every unit and headless render test whose
-# program ctest starts through the emulator (CMAKE_CROSSCOMPILING_EMULATOR:
-# the GoogleTest programs and the `candela` command-line cases), then
+# amd64 machine under qemu-user: every test labelled unit or render (and the
+# candle, eigenflame and model areas' tests, labelled by area) whose program
+# ctest starts through the emulator (CMAKE_CROSSCOMPILING_EMULATOR: the
+# GoogleTest programs), then
 # arm64_state_equality (tests/arm64: every built-in scene's animation state
 # bit-identical to the host build's over 10,000 steps, frames within 2 LSB;
 # configured when the cross build was given -DCANDELA_HOST_BUILD_DIR).
-# Tests that start an arm64 program themselves -- from a script (python, sh)
-# or from inside a test (`spawns` below: the control-socket cases that
-# posix_spawn `candela`) -- would need binfmt_misc and are left out; they run
-# in the amd64 builds.
+# Tests that start an arm64 program themselves -- `candela ...` command
+# lines given as $<TARGET_FILE:candela>, scripts (python, sh), or from inside
+# a test (`spawns` below: the control-socket cases that posix_spawn
+# `candela`) -- would need binfmt_misc and are left out; they run in the
+# amd64 builds.
 # Some render tests take minutes under emulation (the Perlin fire's ray march
 # on llvmpipe, hundreds of frames in frame_loop_alloc); they are left out
 # unless --all is given (`slow` below). Their arm64 pixels are covered by the
@@ -24,7 +26,7 @@ spawns='^input_control\.ControlSocket\.CandelaProgram'
 emulator=$(sed -n 's/^CMAKE_CROSSCOMPILING_EMULATOR:[A-Z]*=//p' "$build/CMakeCache.txt")
 [ -n "$emulator" ] || { echo "arm64 test: $build is not a cross build with an emulator" >&2; exit 1; }
 
-# The tests labelled unit or render that ctest runs through the emulator.
+# The tests of those labels that ctest runs through the emulator.
 ctest --test-dir "$build" --show-only=json-v1 >"$build/arm64-tests.json"
 picked=$(/usr/bin/python3 - "$build/arm64-tests.json" "$emulator" "$spawns" "$slow" <<'PY'
 import json, re, sys
