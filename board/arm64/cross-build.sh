@@ -19,7 +19,6 @@
 #   then: board/arm64/test.sh BUILD_DIR   (the tests under qemu-user)
 #   and:  board/arm64/package.sh BUILD_DIR  (candela_VERSION_arm64.deb)
 set -euo pipefail
-cd "$(dirname "$0")/../.."
 
 host="" type=MinSizeRel build=""
 while [ $# -gt 0 ]; do
@@ -33,6 +32,9 @@ while [ $# -gt 0 ]; do
   shift
 done
 [ -n "$build" ] || { echo "cross-build: usage: $0 [--host-build DIR] [--type TYPE] BUILD_DIR" >&2; exit 2; }
+build=$(realpath -m "$build")
+[ -z "$host" ] || host=$(realpath -m "$host")
+cd "$(dirname "$0")/../.."
 for tool in aarch64-linux-gnu-g++ aarch64-linux-gnu-pkg-config qemu-aarch64-static; do
   command -v "$tool" >/dev/null ||
     { echo "cross-build: $tool not found: run board/install-deps.sh --arm64" >&2; exit 1; }

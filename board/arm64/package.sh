@@ -6,13 +6,12 @@
 # dpkg-shlibdeps over the :arm64 libraries installed by multiarch
 # (board/install-deps.sh --arm64), lintian clean of errors. candela-tool is
 # not cross-built, so there is no candela-tool package for arm64 here.
-#   board/arm64/package.sh BUILD_DIR [--out DIR]   (default out/deb-arm64)
+#   board/arm64/package.sh BUILD_DIR [--out DIR]   (default ./out/deb-arm64)
 # Then, on the board: sudo apt install ./candela_*_arm64.deb
 set -euo pipefail
-cd "$(dirname "$0")/../.."
-build=${1:?usage: board/arm64/package.sh BUILD_DIR [--out DIR]}
-out=out/deb-arm64
-[ "${2:-}" = --out ] && out=${3:?--out needs a folder}
+build=$(realpath -m "${1:?usage: board/arm64/package.sh BUILD_DIR [--out DIR]}")
+out=$(realpath -m out/deb-arm64)
+if [ "${2:-}" = --out ]; then out=$(realpath -m "${3:?--out needs a folder}"); fi
 grep -q 'set(CPACK_DEBIAN_PACKAGE_ARCHITECTURE "arm64")' "$build/CPackConfig.cmake" 2>/dev/null ||
   { echo "package: $build is not an arm64 cross build (board/arm64/cross-build.sh)" >&2; exit 1; }
 for t in firmware/candela tools/record/candela-record; do

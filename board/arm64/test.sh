@@ -13,12 +13,13 @@
 # `candela`) -- would need binfmt_misc and are left out; they run in the
 # amd64 builds.
 # Some render tests take minutes under emulation (the Perlin fire's ray march
-# on llvmpipe, hundreds of frames in frame_loop_alloc); they are left out
+# on llvmpipe, eigen-flame reconstructions checked against the CPU, hundreds
+# of frames in frame_loop_alloc); they are left out
 # unless --all is given (`slow` below). Their arm64 pixels are covered by the
 # state check's frames of the fire scenes, and their code by the amd64 runs.
 #   board/arm64/test.sh [--all] BUILD_DIR
 set -euo pipefail
-slow='^(perlinfire_render\.|frame_loop_alloc\.FrameLoop\.NoHeapAllocationPerFrame$)'
+slow='^(perlinfire_render\.|eigenflame_render\.|frame_loop_alloc\.FrameLoop\.NoHeapAllocationPerFrame$)'
 if [ "${1:-}" = --all ]; then slow='^$'; shift; fi
 build=${1:?usage: board/arm64/test.sh [--all] BUILD_DIR}
 jobs=$(nproc)
@@ -45,7 +46,7 @@ for number, t in enumerate(tests, 1):  # ctest's test numbers (for -I)
         slow += 1
     else:
         picked.append(str(number))
-print(f"arm64 test: {len(picked)} unit/render tests under the emulator; {skipped} start an "
+print(f"arm64 test: {len(picked)} tests under the emulator; {skipped} start an "
       f"arm64 program themselves and {slow} slow ones (--all) are left out", file=sys.stderr)
 print(",".join(picked))
 PY
