@@ -3,6 +3,9 @@
 # (bookworm) or Raspberry Pi OS bookworm. Safe to run again.
 #   board/install-deps.sh            build + run + test dependencies
 #   board/install-deps.sh --runtime  only what the kiosk needs to run
+# On amd64 the full set includes the arm64 cross build (Debian multiarch:
+# board/arm64/cross-build.sh and its tests under qemu-user); alone:
+#   board/install-deps.sh --arm64
 set -euo pipefail
 
 SUDO=""
@@ -51,8 +54,41 @@ tests=(
   systemd python3-seccomp
 )
 
+# The arm64 cross build (board/arm64/): the cross compiler, qemu-user to run
+# the arm64 tests, and the :arm64 libraries the runtime and its tests link
+# (Mesa's llvmpipe for the headless render tests). Everything the runtime
+# uses installs for arm64 on Debian 12; candela-tool (Eigen, libav) is not
+# cross-built.
+arm64=(
+  crossbuild-essential-arm64 qemu-user-static
+  pkgconf:arm64 libegl-dev:arm64 libgles-dev:arm64 libegl-mesa0:arm64 libgl1-mesa-dri:arm64
+  libdrm-dev:arm64 libgbm-dev:arm64 libpng-dev:arm64 libx11-dev:arm64 zlib1g-dev:arm64
+  libtomlplusplus-dev:arm64 libgpiod-dev:arm64 libasound2-dev:arm64 libmosquitto-dev:arm64
+  libcamera-dev:arm64
+  libfftw3-dev:arm64  # tests/eigenflame's reference FFT
+  libgtest-dev:arm64 libgmock-dev:arm64
+)
+# Adds arm64 to dpkg's architectures (once) so the :arm64 packages can be had.
+enable_arm64() {
+  if ! dpkg --print-foreign-architectures | grep -qx arm64; then
+    echo "install-deps: adding the arm64 architecture (dpkg --add-architecture arm64)" >&2
+    $SUDO dpkg --add-architecture arm64
+  fi
+}
+
 want=("${runtime[@]}")
-if [ "${1:-}" != "--runtime" ]; then want+=("${build[@]}" "${tests[@]}"); fi
+case "${1:-}" in
+  --runtime) ;;
+  --arm64) want=("${arm64[@]}") ;;
+  *) want+=("${build[@]}" "${tests[@]}") ;;
+esac
+if [ "${1:-}" != "--runtime" ] && [ "$(dpkg --print-architecture)" = amd64 ]; then
+  [ "${1:-}" = "--arm64" ] || want+=("${arm64[@]}")
+  enable_arm64
+elif [ "${1:-}" = "--arm64" ]; then
+  echo "install-deps: --arm64 is for cross-building on amd64 (this is $(dpkg --print-architecture))" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${want[@]}"; do

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds and runs every test three times: a normal build (build/), a clang
 # Release build against libgpiod 2 (build-gpiod2/) and an AddressSanitizer +
-# UndefinedBehaviorSanitizer build (build-asan/); then the fuzz targets. The
+# UndefinedBehaviorSanitizer build (build-asan/); then an arm64 cross build
+# (build-arm64/, its tests under qemu-user) and the fuzz targets. The
 # virtual-board tests (label "board", slow under emulation) and the slow pure
 # numerics (label "numeric") run in the normal build only.
 set -euo pipefail
@@ -45,6 +46,15 @@ cmake --build build-asan -j "$jobs"
 # Label "numeric": pure numerics whose code a smaller test runs here (5 min
 # under ASan for 2 s normally); they run in the normal build above.
 ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE 'board|numeric'
+
+# arm64 (board/arm64/): the runtime cross-built with GCC -Werror in
+# MinSizeRel (the one build type not built above) against Debian's :arm64
+# libraries, its unit and headless render tests under qemu-user, every
+# built-in scene's animation state bit-identical to build/'s over 10,000
+# steps (frames within 2 LSB), and the arm64 .deb.
+board/arm64/cross-build.sh --host-build build build-arm64
+board/arm64/test.sh build-arm64
+board/arm64/package.sh build-arm64
 
 # libFuzzer (clang, build-fuzz/): the model reader with the players built from
 # it, the scene reader, noise tables, the control-socket commands and the

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "core/fixed.h"
+#include "core/state_hash.h"
 #include "gl/math.h"
 #include "sound/sound_cue.h"
 
@@ -124,6 +125,11 @@ class Element {
   // (fire, activity, counts) or raise it (wind); never clear it. Called
   // whether or not the scene plays sound; no allocation, no GL. Default: silent.
   virtual void add_sound_cue(SoundCue& /*cue*/) const {}
+  // Feeds this element's animation state (what update() changes: its
+  // fixed-point values and what it derives from them for drawing) to `hash`.
+  // For checking that two builds animate alike (tests/arm64); never called
+  // by the frame loop. Default: no state.
+  virtual void hash_state(StateHash& /*hash*/) const {}
 };
 
 class ElementSpec {

@@ -38,6 +38,20 @@ void Scene::update(const StepContext& step) {
   }
 }
 
+void Scene::hash_state(StateHash& hash) const {
+  const WindSample w = wind_.sample(Vec3{});
+  hash.add(w.x);
+  hash.add(w.z);
+  hash.add(sound_cue_.fire);
+  hash.add(sound_cue_.activity);
+  hash.add(sound_cue_.wind);
+  hash.add(uint32_t{sound_cue_.blowouts});
+  hash.add(uint32_t{sound_cue_.sputters});
+  hash.add(uint32_t{sound_cue_.lit});
+  hash.add(static_cast<uint64_t>(elements_.size()));
+  for (const auto& e : elements_) e->hash_state(hash);
+}
+
 void Scene::draw(FrameContext& frame) {
   const float aspect = frame.height > 0 ? static_cast<float>(frame.width) / frame.height : 1.0f;
   frame.view = Mat4::look_at(camera_.position, camera_.target, {0, 1, 0});

@@ -31,6 +31,10 @@ class Scene {
   int candles_lit() const;
   // What the last update() sounded like: every element's add_sound_cue().
   const SoundCue& sound_cue() const { return sound_cue_; }
+  // Feeds the animation state after the last update() -- the wind at the
+  // origin, the sound cue and every element's hash_state() -- to `hash`
+  // (tests/arm64 compares builds with it). Not for the frame loop.
+  void hash_state(StateHash& hash) const;
 
  private:
   Vec3 background_;

@@ -54,6 +54,22 @@ class Candles final : public Element {
     add(cue.lit, lit);
     cue.wind = std::max(cue.wind, wind);
   }
+  void hash_state(StateHash& hash) const override {
+    hash.add(static_cast<uint64_t>(rigs_.size()));
+    for (const auto& r : rigs_) {
+      const CandleState& st = r.state();
+      for (uint32_t p : st.phase) hash.add(p);
+      for (Fixed v : {st.ax, st.vx, st.az, st.vz, st.lean, st.tilt, st.stretch, st.width,
+                      st.strength, st.tip, st.grow, st.wind_speed})
+        hash.add(v);
+      for (Fixed v : st.turbulence) hash.add(v);
+      hash.add(st.out_steps);
+      hash.add(st.relight_in);
+      hash.add(st.times_out);
+      hash.add(st.lit);
+      hash.add(st.stuck);
+    }
+  }
 
  private:
   std::vector<CandleDesc> desc_;

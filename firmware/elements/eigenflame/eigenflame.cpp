@@ -237,6 +237,24 @@ class EigenFlame final : public Element {
   // comes from the hearth it burns on.
   void add_sound_cue(SoundCue& cue) const override { cue.wind = std::max(cue.wind, abs(wind_x_)); }
 
+  // The clock and lean, the frame the walk or story shows, and the weights
+  // drawn (floats, but from integer choices and IEEE arithmetic alone).
+  void hash_state(StateHash& hash) const override {
+    for (Fixed v : {fps_, lean_, phase_, time_, wind_x_}) hash.add(v);
+    if (story_) {
+      hash.add(story_->frame());
+      hash.add(story_->weights());
+    } else if (player_) {
+      hash.add(player_->shown_frame());
+      hash.add(player_->weights());
+    } else if (arp_) {
+      const auto d = static_cast<size_t>(shape_->dim());
+      hash.add(std::span<const float>(prev_.data(), d));
+      hash.add(std::span<const float>(next_.data(), d));
+    }
+    hash.add(std::span<const float>(edited_));
+  }
+
   // The flame's offscreen work (reconstruction, glow, sprite) is its
   // batch's: in a scene, the scene prepares the shared batch once per frame
   // for all its eigen-flames (a SceneResource); made without one, the flame

@@ -170,6 +170,10 @@ class Hearth final : public Element {
     time_ = step.time;
     flicker_ = light_.at(step.time);
   }
+  void hash_state(StateHash& hash) const override {
+    hash.add(time_);
+    hash.add(flicker_);
+  }
 
   // The embers and logs are the fire's body: its roar follows the
   // firelight's flicker, and it crackles more as the light flares (0 at the

@@ -185,6 +185,10 @@ class PerlinFire final : public Element {
     wind_speed_ = abs(w.x) + abs(w.z);  // (L1: no square root on the step)
     uniforms_dirty_ = true;
   }
+  void hash_state(StateHash& hash) const override {
+    for (Fixed v : {lean_x_, lean_z_, drift_x_, drift_z_, time_, breath_now_, wind_speed_})
+      hash.add(v);
+  }
 
   // The fire's loudness follows its breathing (the swell of its tongues),
   // its crackling how far the breath is above its low point, its whoosh the

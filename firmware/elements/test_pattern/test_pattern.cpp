@@ -20,6 +20,7 @@ class TestPattern final : public Element {
   void update(const StepContext& s) override {
     phase_ = test_pattern_phase(s.step, steps_per_period_);
   }
+  void hash_state(StateHash& hash) const override { hash.add(phase_); }
 
   void draw(const FrameContext& f, DrawPass pass) override {
     if (pass != DrawPass::kBackground) return;
