@@ -29,34 +29,19 @@ import sys
 import tempfile
 import time
 
+# check(), wait_for() and FAILED: tests/support/checks.py
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
+from checks import FAILED, check, wait_for  # noqa: E402
+
 CANDELA = sys.argv[1]
 CARD = "/dev/dri/card0"
 WORK = tempfile.mkdtemp(prefix="candela-drm-faults-")
-FAILED = []
 
 DRM_IOCTL_SET_MASTER = 0x641E
 DRM_IOCTL_DROP_MASTER = 0x641F
 DRM_IOCTL_MODE_GETRESOURCES = 0xC04064A0  # _IOWR('d', 0xA0, struct drm_mode_card_res)
 DRM_IOCTL_MODE_GETCRTC = 0xC06864A1  # _IOWR('d', 0xA1, struct drm_mode_crtc)
 SYS_PIDFD_GETFD = 438  # x86_64
-
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what, flush=True)
-    if not cond:
-        FAILED.append(what)
-    return cond
-
-
-def wait_for(what, fn, timeout=30.0, interval=0.02):
-    deadline = time.monotonic() + timeout
-    while True:
-        v = fn()
-        if v:
-            return v
-        if time.monotonic() > deadline:
-            raise AssertionError("timed out after %.0f s waiting for %s" % (timeout, what))
-        time.sleep(interval)  # polling interval, bounded by the deadline
 
 
 def first_crtc(fd):

@@ -15,29 +15,14 @@ import sys
 import tempfile
 import time
 
+# check(), wait_for() and FAILED: tests/support/checks.py
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
+from checks import FAILED, check, wait_for  # noqa: E402
+
 CASE, BUILD = sys.argv[1], os.path.abspath(sys.argv[2])
 CANDELA = os.path.join(BUILD, "firmware", "candela")
 WORK = tempfile.mkdtemp(prefix="candela-hostile-")
-FAILED = []
 ELEMENT = '[[element]]\nkind = "test_pattern"\n'
-
-
-def check(cond, what, detail=""):
-    print(("ok   " if cond else "FAIL ") + what + ("" if cond else detail), flush=True)
-    if not cond:
-        FAILED.append(what)
-    return cond
-
-
-def wait_for(what, fn, timeout=30.0, interval=0.02):
-    deadline = time.monotonic() + timeout
-    while True:
-        v = fn()
-        if v:
-            return v
-        if time.monotonic() > deadline:
-            raise AssertionError("timed out after %.0f s waiting for %s" % (timeout, what))
-        time.sleep(interval)  # polling interval, bounded by the deadline
 
 
 def write(name, text):

@@ -20,31 +20,15 @@ import tempfile
 import time
 import zlib
 
+# check(), wait_for() and FAILED: tests/support/checks.py
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
+from checks import FAILED, check, wait_for  # noqa: E402
+
 CASE, BUILD = sys.argv[1], os.path.abspath(sys.argv[2])
 CANDELA = os.path.join(BUILD, "firmware", "candela")
 RECORD = os.path.join(BUILD, "tools", "record", "candela-record")
 TOOL = os.path.join(BUILD, "tools", "candela-tool", "candela-tool")
 WORK = tempfile.mkdtemp(prefix="candela-vb-")
-FAILED = []
-
-
-def check(cond, what):
-    print(("ok   " if cond else "FAIL ") + what, flush=True)
-    if not cond:
-        FAILED.append(what)
-    return cond
-
-
-def wait_for(what, fn, timeout=20.0, interval=0.02):
-    """Polls fn() until it returns something truthy or the deadline passes."""
-    deadline = time.monotonic() + timeout
-    while True:
-        v = fn()
-        if v:
-            return v
-        if time.monotonic() > deadline:
-            raise AssertionError("timed out after %.0f s waiting for %s" % (timeout, what))
-        time.sleep(interval)  # polling interval, bounded by the deadline
 
 
 class Candela:
