@@ -310,6 +310,10 @@ void MqttBridge::on_disconnect(int rc) {
   connected_ = false;
 }
 
+bool MqttBridge::is_momentary(std::string_view verb) {
+  return verb == "gust" || verb == "blowout" || verb == "reload";
+}
+
 void MqttBridge::on_message(const mosquitto_message* m) {
   const std::string set = s_.prefix + "/set/";
   if (!m->topic || std::strncmp(m->topic, set.c_str(), set.size()) != 0) return;
@@ -324,6 +328,13 @@ void MqttBridge::on_message(const mosquitto_message* m) {
     reply = "error: expected " + set +
             "COMMAND (lower-case letters) with the arguments as a one-line payload of at most " +
             std::to_string(ControlServer::kMaxLine) + " bytes";
+  } else if (m->retain && is_momentary(verb)) {
+    // A retained command comes again at every (re)connect: a setting (volume,
+    // screen, scene...) is the home's wish and is applied again; an event is
+    // not, or every reconnect would blow a gust or reload.
+    reply = "error: " + verb +
+            ": a retained message is not acted on (an event would repeat at every reconnect); "
+            "publish it without retain";
   } else {
     // The control socket's one parser and handling: "volume" + " 0.4".
     std::string line = verb;

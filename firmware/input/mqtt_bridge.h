@@ -3,7 +3,9 @@
 // libmosquitto-dev), on a thread of its own:
 //   PREFIX/set/COMMAND   payload: the command's arguments; routed through the
 //                        control socket's parser (InputHub::answer), e.g.
-//                        PREFIX/set/volume "0.4", PREFIX/set/gust "left 2"
+//                        PREFIX/set/volume "0.4", PREFIX/set/gust "left 2";
+//                        retained, a setting is applied at every connect but
+//                        an event (gust, blowout, reload) is refused
 //   PREFIX/reply         what each command answered ("ok", "error: ...")
 //   PREFIX/state         retained JSON: volume, wind, candles lit, frame
 //                        (InputHub::summary_json), on connect, after each
@@ -31,6 +33,7 @@
 #include <cstdint>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -89,6 +92,8 @@ class MqttBridge {
   void on_connect(int rc);
   void on_disconnect(int rc);
   void on_message(const mosquitto_message* m);
+  // An event, not a setting: gust, blowout, reload (refused when retained).
+  static bool is_momentary(std::string_view verb);
   void publish(const std::string& topic, const std::string& payload, bool retain, int qos = 1);
   void publish_state(bool force);
   enum class Entity { kVolume, kGust, kScreen, kBrightness, kScene };

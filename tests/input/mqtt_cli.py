@@ -347,6 +347,34 @@ def case_reconnect():
     broker.stop()
 
 
+def case_retained():
+    """A retained command is delivered again at every connect: a setting
+    (volume) is applied again, an event (gust) is refused, or each reconnect
+    of the kiosk would blow a gust."""
+    port = free_port()
+    ctl = os.path.join(WORK, "ctl")
+    broker = Broker(port)
+    client = Client(port)
+    for command, payload in (("gust", "left 2"), ("volume", "0.25")):
+        client.c.publish(PREFIX + "/set/" + command, payload, qos=1, retain=True).wait_for_publish()
+    p = start_candela(write_config(port), "--control", ctl)
+    refused = client.wait(PREFIX + "/reply", lambda x: "retained" in x)
+    check(refused is not None and refused.startswith("error: gust: a retained message is not acted on"),
+          "the retained gust is refused, saying why", refused)
+    check(client.wait(PREFIX + "/state", lambda x: json.loads(x).get("volume") == 0.25) is not None,
+          "the retained volume is applied")
+    check(frames_advance(ctl, 30), "the display runs on")
+    state = json.loads(ask(ctl, "state") or "{}")
+    check(state.get("events") == 0 and state.get("wind", {}).get("x") == 0.0,
+          "no gust was blown", state)
+    client.send("gust", "left 2")  # the same command, not retained: blown
+    check(client.wait(PREFIX + "/reply", lambda x: x.startswith("ok")) is not None,
+          "the same gust sent without retain is taken")
+    check(stop_candela(p) == 0, "exit 0")
+    client.close()
+    broker.stop()
+
+
 def case_absent():
     port = free_port()
     ctl = os.path.join(WORK, "ctl")
@@ -482,7 +510,7 @@ def case_config():
 try:
     {"commands": case_commands, "reconnect": case_reconnect, "absent": case_absent,
      "password": case_password, "off": case_off, "config": case_config,
-     "silent": case_silent}[CASE]()
+     "silent": case_silent, "retained": case_retained}[CASE]()
 finally:
     for p in procs:
         if p.poll() is None:
