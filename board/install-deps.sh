@@ -37,8 +37,9 @@ build=(
   dpkg-dev lintian
 )
 tests=(
-  # MQTT tests (tests/input/mqtt_cli.py): a real broker on loopback, and a client
-  mosquitto python3-paho-mqtt
+  # MQTT tests (tests/input/mqtt_cli.py): a real broker on loopback, and a client;
+  # openssl makes the TLS case's certificates
+  mosquitto python3-paho-mqtt openssl
   ffmpeg python3 python3-numpy python3-scipy python3-pil imagemagick xvfb xauth
   # virtual board (board/virtual): QEMU + Debian kernel + out-of-tree drivers
   qemu-system-x86 busybox-static cpio kmod gzip xz-utils bc flex bison libelf-dev

@@ -74,7 +74,17 @@ MqttSettings parse_mqtt(ParamReader& r, bool present) {
            "expected a host name or address of 1..253 characters (letters, digits, '.', '-', "
            "'_', ':'), got \"" +
                echo_value(s.host) + "\"");
-  s.port = static_cast<int>(r.integer("port", s.port, 1, 65535));
+  s.tls = r.boolean("tls", false);
+  s.port = static_cast<int>(r.integer("port", s.tls ? 8883 : s.port, 1, 65535));
+  for (auto [key, field] : {std::pair{"ca_file", &s.ca_file}, std::pair{"cert_file", &s.cert_file},
+                            std::pair{"key_file", &s.key_file}}) {
+    if (!r.has(key)) continue;
+    if (!s.tls) r.fail(key, "given without tls = true; expected [mqtt] tls = true too");
+    *field = r.path(key);  // a readable regular file, or ParamReader says so
+  }
+  if (s.cert_file.empty() != s.key_file.empty())
+    r.fail(s.cert_file.empty() ? "key_file" : "cert_file",
+           "expected cert_file and key_file together (a client certificate and its key)");
   s.prefix = r.string("prefix", s.prefix);
   if (!valid_topic_prefix(s.prefix))
     r.fail("prefix",
@@ -141,6 +151,19 @@ void MqttBridge::start() {
   if (!s_.username.empty())
     mosquitto_username_pw_set(mosq_, s_.username.c_str(),
                               s_.password.empty() ? nullptr : s_.password.c_str());
+  if (s_.tls) {
+    // The broker's name is checked against its certificate (never insecure).
+    const int rc = mosquitto_tls_set(mosq_, s_.ca_file.empty() ? nullptr : s_.ca_file.c_str(),
+                                     s_.ca_file.empty() ? "/etc/ssl/certs" : nullptr,
+                                     s_.cert_file.empty() ? nullptr : s_.cert_file.c_str(),
+                                     s_.key_file.empty() ? nullptr : s_.key_file.c_str(), nullptr);
+    if (rc != MOSQ_ERR_SUCCESS) {
+      LOG_ERROR("mqtt: cannot set up TLS (%s); running without MQTT", mosquitto_strerror(rc));
+      mosquitto_destroy(mosq_);
+      mosq_ = nullptr;
+      return;
+    }
+  }
   // Small messages, answered at once: no Nagle delay (40 ms with delayed ACKs).
   mosquitto_int_option(mosq_, MOSQ_OPT_TCP_NODELAY, 1);
   const std::string avail = s_.prefix + "/availability";
@@ -154,7 +177,11 @@ void MqttBridge::start() {
   mosquitto_message_callback_set(mosq_, [](mosquitto*, void* self, const mosquitto_message* m) {
     static_cast<MqttBridge*>(self)->on_message(m);
   });
-  LOG_INFO("mqtt: broker %s:%d, topics %s/...", s_.host.c_str(), s_.port, s_.prefix.c_str());
+  mosquitto_log_callback_set(mosq_, [](mosquitto*, void* self, int level, const char* text) {
+    if (level == MOSQ_LOG_ERR && text) static_cast<MqttBridge*>(self)->last_lib_error_ = text;
+  });
+  LOG_INFO("mqtt: broker %s:%d%s, topics %s/...", s_.host.c_str(), s_.port, s_.tls ? " (TLS)" : "",
+           s_.prefix.c_str());
   thread_ = std::thread([this] { run(); });
 }
 
@@ -347,6 +374,15 @@ void MqttBridge::on_message(const mosquitto_message* m) {
   publish_state(true);
 }
 
+std::string MqttBridge::failure(int rc) const {
+  // libmosquitto's "A TLS error occurred." hides OpenSSL's reason
+  // (certificate verify failed...): its last error log line says it.
+  if (rc == MOSQ_ERR_TLS && !last_lib_error_.empty())
+    return "TLS: " + last_lib_error_ +
+           " (check [mqtt] ca_file, and that host is the name in the broker's certificate)";
+  return rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc);
+}
+
 void MqttBridge::run() {
   int64_t backoff_ms = 1000;
   const int64_t max_ms = int64_t{s_.reconnect_max_s} * 1000;
@@ -360,8 +396,7 @@ void MqttBridge::run() {
           LOG_WARN(
               "mqtt: cannot reach the broker %s:%d (%s); retrying with backoff (the display "
               "runs on)",
-              s_.host.c_str(), s_.port,
-              rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc));
+              s_.host.c_str(), s_.port, failure(rc).c_str());
         reported_ = true;
         wait_stop(backoff_ms);
         backoff_ms = std::min(max_ms, backoff_ms * 2);
@@ -380,8 +415,7 @@ void MqttBridge::run() {
       refused_ = false;
       if (!reported_)
         LOG_WARN("mqtt: broker %s:%d: %s; retrying with backoff (the display runs on)",
-                 s_.host.c_str(), s_.port,
-                 rc == MOSQ_ERR_ERRNO ? std::strerror(errno) : mosquitto_strerror(rc));
+                 s_.host.c_str(), s_.port, failure(rc).c_str());
       reported_ = true;
       connected_ = false;
       socket_up = false;

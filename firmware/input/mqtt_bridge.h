@@ -53,6 +53,12 @@ struct MqttSettings {
   std::string client_id;           // empty: "candela-" + the prefix's levels joined by '-'
   std::string username;            // empty: anonymous
   std::string password;            // read from password_file (its first line)
+  // TLS (tls = true; the port defaults to 8883 then): the broker's
+  // certificate is checked against ca_file (PEM), else the system's CAs
+  // (/etc/ssl/certs), and its name against host; a client certificate is
+  // cert_file + key_file (both or neither). Paths are checked when read.
+  bool tls = false;
+  std::string ca_file, cert_file, key_file;
   int keepalive_s = 30;
   int reconnect_max_s = 30;  // the backoff's ceiling
   bool discovery = true;     // publish Home Assistant discovery config
@@ -99,8 +105,10 @@ class MqttBridge {
   enum class Entity { kVolume, kGust, kScreen, kBrightness, kScene };
   std::string discovery_json(Entity entity) const;
   bool wait_stop(int64_t ms);
+  std::string failure(int rc) const;  // why a connection failed, for the log
 
   MqttSettings s_;
+  std::string last_lib_error_;  // libmosquitto's last error log line (its thread only)
   InputHub& hub_;
   mosquitto* mosq_ = nullptr;
   std::thread thread_;

@@ -55,10 +55,12 @@ def free_port():
 class Broker:
     """mosquitto on 127.0.0.1:port; ready when it logs that it is running."""
 
-    def __init__(self, port, passwords=None):
+    def __init__(self, port, passwords=None, tls=None):
         conf = os.path.join(WORK, "mosquitto-%d.conf" % port)
         with open(conf, "w") as f:
             f.write("listener %d 127.0.0.1\npersistence false\nlog_dest stderr\nlog_type all\n" % port)
+            if tls:  # (certificate, key): the listener speaks TLS only
+                f.write("certfile %s\nkeyfile %s\n" % tls)
             if passwords:
                 pw = os.path.join(WORK, "passwd")
                 open(pw, "w").close()
@@ -97,9 +99,11 @@ class Broker:
 class Client:
     """Subscribed to everything candela publishes; messages queue up in order."""
 
-    def __init__(self, port, user=None, password=None):
+    def __init__(self, port, user=None, password=None, ca=None):
         self.q = queue.Queue()
         self.c = mqtt.Client(client_id="test-%d-%d" % (os.getpid(), port), clean_session=True)
+        if ca:
+            self.c.tls_set(ca_certs=ca)
         if user:
             self.c.username_pw_set(user, password)
         self.c.on_message = lambda c, u, m: self.q.put((m.topic, m.payload.decode(), m.retain))
@@ -375,6 +379,51 @@ def case_retained():
     broker.stop()
 
 
+def self_signed(name):
+    """A certificate for 127.0.0.1 that is its own CA, and its key (openssl)."""
+    cert, key = os.path.join(WORK, name + ".pem"), os.path.join(WORK, name + ".key")
+    subprocess.run(["openssl", "req", "-x509", "-newkey", "rsa:2048", "-nodes", "-days", "2",
+                    "-subj", "/CN=127.0.0.1", "-addext", "subjectAltName=IP:127.0.0.1",
+                    "-keyout", key, "-out", cert], check=True, capture_output=True)
+    os.chmod(WORK, 0o755)  # mosquitto, started as root, reads them as the user "mosquitto"
+    os.chmod(key, 0o644)
+    return cert, key
+
+
+def case_tls():
+    """[mqtt] tls = true: the broker's certificate is checked (against
+    ca_file) and its name; commands and state travel encrypted. A broker
+    whose certificate the kiosk does not trust is refused, logged once, and
+    the display runs on."""
+    port = free_port()
+    ctl = os.path.join(WORK, "ctl")
+    cert, key = self_signed("broker")
+    broker = Broker(port, tls=(cert, key))
+    client = Client(port, ca=cert)
+    config = write_config(port, 'tls = true\nca_file = "broker.pem"\n')
+    p = start_candela(config, "--control", ctl)
+    check(client.wait(PREFIX + "/availability", lambda x: x == "online") is not None,
+          "online over TLS", candela_log())
+    client.send("volume", "0.3")
+    check(client.wait(PREFIX + "/reply", lambda x: x.startswith("ok")) is not None,
+          "a command over TLS is answered")
+    check(json.loads(ask(ctl, "state") or "{}").get("volume") == 0.3, "and carried out")
+    check("(TLS)" in candela_log(), "the log says the broker is reached over TLS", candela_log())
+    check(stop_candela(p) == 0, "exit 0")
+    # Another CA: the broker's certificate is not trusted.
+    self_signed("stranger")
+    p = start_candela(write_config(port, 'tls = true\nca_file = "stranger.pem"\n'),
+                      "--control", ctl)
+    check(frames_advance(ctl, 120), "the display runs while the broker is not trusted")
+    log = candela_log()
+    check("connected to" not in log, "no connection to an untrusted broker", log)
+    check(log.count("with backoff") == 1 and "certificate verify failed" in log
+          and "check [mqtt] ca_file" in log, "the failure is logged once, saying why", log)
+    check(stop_candela(p) == 0, "exit 0")
+    client.close()
+    broker.stop()
+
+
 def case_absent():
     port = free_port()
     ctl = os.path.join(WORK, "ctl")
@@ -483,7 +532,10 @@ def case_config():
         ('host = "h"\npassword_file = "p"\n', "mqtt.password_file", "without a username"),
         ('host = "h"\nusername = "u"\npassword_file = "nope"\n', "mqtt.password_file", ""),
         ('host = "h"\nreconnect_max = 0\n', "mqtt.reconnect_max", ""),
-        ('host = "h"\ntls = true\n', "mqtt.tls", ""),
+        ('host = "h"\ntls = "yes"\n', "mqtt.tls", ""),
+        ('host = "h"\nca_file = "p"\n', "mqtt.ca_file", "without tls = true"),
+        ('host = "h"\ntls = true\nca_file = "nope.pem"\n', "mqtt.ca_file", "readable regular file"),
+        ('host = "h"\ntls = true\ncert_file = "p"\n', "mqtt.cert_file", "together"),
     ]:
         path = os.path.join(WORK, "bad.toml")
         open(path, "w").write("[mqtt]\n" + body)
@@ -510,7 +562,7 @@ def case_config():
 try:
     {"commands": case_commands, "reconnect": case_reconnect, "absent": case_absent,
      "password": case_password, "off": case_off, "config": case_config,
-     "silent": case_silent, "retained": case_retained}[CASE]()
+     "silent": case_silent, "retained": case_retained, "tls": case_tls}[CASE]()
 finally:
     for p in procs:
         if p.poll() is None:
