@@ -66,7 +66,8 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
     scene->update(step);
     if (s.sound) {
       SoundCue cue = scene->sound_cue();
-      if (s.inputs) cue.volume = s.inputs->volume();  // the `volume` commands' (an atomic)
+      // The `volume` commands' (an atomic), times the schedule's (fades, night).
+      if (s.inputs) cue.volume = s.inputs->volume() * (kiosk ? kiosk->volume_level() : 1.0f);
       s.sound->push(cue);
     }
     clock.tick();

@@ -285,6 +285,7 @@ std::string Kiosk::reload() {
         if (n.scene >= 0) show = o_.schedule.scenes[static_cast<size_t>(n.scene)].scene;
       } else {
         schedule_level_.store(1.0f, std::memory_order_relaxed);
+        schedule_volume_.store(1.0f, std::memory_order_relaxed);
       }
     }
     result = load_and_show(show, true);
@@ -302,6 +303,7 @@ void Kiosk::apply_schedule() {
     if (!s.present) return;
     const ScheduleNow n = evaluate_schedule(s, local_time(clock_.now_ms() / 1000));
     schedule_level_.store(static_cast<float>(n.level), std::memory_order_relaxed);
+    schedule_volume_.store(static_cast<float>(n.volume), std::memory_order_relaxed);
     if (s.has_days && static_cast<int>(n.on) != schedule_on_) {
       const bool first = schedule_on_ < 0;
       schedule_on_ = n.on ? 1 : 0;

@@ -84,6 +84,9 @@ class Kiosk final : public KioskControl {
     return brightness_.load(std::memory_order_relaxed) *
            schedule_level_.load(std::memory_order_relaxed);
   }
+  // The schedule's share of the volume (fades, night_volume): the sound's
+  // level is the `volume` command's times this.
+  float volume_level() const { return schedule_volume_.load(std::memory_order_relaxed); }
   bool scene_waiting() const { return scene_waiting_.load(std::memory_order_acquire); }
   // The waiting scene, or null (none, or the lock is busy: try next frame).
   std::unique_ptr<SceneDesc> take_scene();
@@ -113,7 +116,7 @@ class Kiosk final : public KioskControl {
   const WallClock& clock_;
   SdNotify* notify_;
   std::atomic<bool> screen_on_{true};
-  std::atomic<float> brightness_{1.0f}, schedule_level_{1.0f}, fps_{0.0f};
+  std::atomic<float> brightness_{1.0f}, schedule_level_{1.0f}, schedule_volume_{1.0f}, fps_{0.0f};
   mutable std::mutex mu_;  // label_, schedule, the scene hand-over
   std::condition_variable built_cv_;
   std::string label_;

@@ -85,7 +85,7 @@ Schedule parse_schedule(ParamReader& r, bool present, const std::string& config_
   std::bitset<7> named;
   for (const std::string& key : r.keys()) {
     if (key == "fade_in" || key == "fade_out" || key == "night" || key == "night_level" ||
-        key == "scenes")
+        key == "night_volume" || key == "scenes")
       continue;
     // A day, a range of days ("mon-fri", "fri-mon" wraps) or "daily".
     int d0 = -1, d1 = -1;
@@ -101,7 +101,8 @@ Schedule parse_schedule(ParamReader& r, bool present, const std::string& config_
     if (d0 < 0 || d1 < 0)
       r.fail(key,
              "unknown key: expected a weekday (mon tue wed thu fri sat sun), a range of them "
-             "(\"mon-fri\"), \"daily\", or fade_in, fade_out, night, night_level, scenes");
+             "(\"mon-fri\"), \"daily\", or fade_in, fade_out, night, night_level, night_volume, "
+             "scenes");
     std::vector<int> days;
     for (int d = d0;; d = (d + 1) % 7) {
       days.push_back(d);
@@ -131,6 +132,7 @@ Schedule parse_schedule(ParamReader& r, bool present, const std::string& config_
   s.fade_in_s = static_cast<int>(r.integer("fade_in", s.fade_in_s, 0, 3600));
   s.fade_out_s = static_cast<int>(r.integer("fade_out", s.fade_out_s, 0, 3600));
   s.night_level = r.number("night_level", s.night_level, 0.0, 1.0);
+  s.night_volume = r.number("night_volume", s.night_volume, 0.0, 1.0);
   if (r.has("night")) {
     const std::string text = r.string("night", "");
     int from = 0, to = 0;
@@ -185,9 +187,11 @@ ScheduleNow evaluate_schedule(const Schedule& s, const LocalTime& t) {
   const int week_minute = t.weekday * kMinutesPerDay + minute_of_day;
   for (size_t i = 0; i < s.scenes.size(); ++i)
     if (s.scenes[i].minutes[static_cast<size_t>(minute_of_day)]) n.scene = static_cast<int>(i);
-  double level = s.night[static_cast<size_t>(minute_of_day)] ? s.night_level : 1.0;
+  const bool night = s.night[static_cast<size_t>(minute_of_day)];
+  double fade = 1.0;  // the fades' share, the same for picture and sound
   if (!s.has_days) {
-    n.level = level;
+    n.level = night ? s.night_level : 1.0;
+    n.volume = night ? s.night_volume : 1.0;
     return n;
   }
   auto on_at = [&](int m) {
@@ -208,13 +212,14 @@ ScheduleNow evaluate_schedule(const Schedule& s, const LocalTime& t) {
     // Fading in after the on-time, out before the off-time.
     const int64_t since = int64_t{behind} * 60 + sec;
     if (behind < kMinutesPerWeek && s.fade_in_s > 0 && since < s.fade_in_s)
-      level *= static_cast<double>(since) / s.fade_in_s;
+      fade *= static_cast<double>(since) / s.fade_in_s;
     if (n.has_next && s.fade_out_s > 0 && n.next_in_s < s.fade_out_s)
-      level *= static_cast<double>(n.next_in_s) / s.fade_out_s;
+      fade *= static_cast<double>(n.next_in_s) / s.fade_out_s;
   } else {
-    level = 0.0;
+    fade = 0.0;
   }
-  n.level = std::clamp(level, 0.0, 1.0);
+  n.level = std::clamp(fade * (night ? s.night_level : 1.0), 0.0, 1.0);
+  n.volume = std::clamp(fade * (night ? s.night_volume : 1.0), 0.0, 1.0);
   return n;
 }
 
@@ -226,6 +231,10 @@ std::string describe_schedule(const Schedule& s, const LocalTime& t, const std::
                     ": screen " + (n.on ? "on" : "off");
   std::snprintf(b, sizeof b, ", level %.2f", n.level);
   out += b;
+  if (s.night_volume != 1.0) {  // a sound schedule: say where it stands
+    std::snprintf(b, sizeof b, ", volume %.2f", n.volume);
+    out += b;
+  }
   if (n.on && s.night[static_cast<size_t>(t.second_of_day / 60)]) out += " (night)";
   out += ", scene " + (n.scene >= 0 ? s.scenes[static_cast<size_t>(n.scene)].scene + " (" +
                                           s.scenes[static_cast<size_t>(n.scene)].range + ")"

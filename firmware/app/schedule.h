@@ -10,6 +10,8 @@
 //   fade_out = 10                          # s, 0..3600: down to black before an off-time
 //   night = "22:00-06:30"                  # dimmed every day in this range
 //   night_level = 0.4                      # the brightness then (0..1)
+//   night_volume = 0.3                     # the sound's volume then (0..1; default 1):
+//                                          #   it fades in and out with the picture
 //   [schedule.scenes]                      # a scene per time range, every day;
 //   "17:00-21:00" = "eigen-candle"         #   outside them: the config's scene
 //   "21:00-23:30" = "eigen-fireplace"
@@ -37,6 +39,7 @@ struct Schedule {
   int fade_out_s = 10;
   std::bitset<kMinutesPerDay> night;  // minute of the day -> dimmed
   double night_level = 0.5;
+  double night_volume = 1.0;
   struct SceneRange {
     std::string range;  // as written, "17:00-21:00"
     std::bitset<kMinutesPerDay> minutes;
@@ -63,6 +66,7 @@ LocalTime local_time(int64_t unix_s);
 struct ScheduleNow {
   bool on = true;         // the screen should be on
   double level = 1.0;     // the brightness multiplier now: fades and night (0..1)
+  double volume = 1.0;    // the volume multiplier now: the same fades, night_volume (0..1)
   int scene = -1;         // index into Schedule::scenes; -1: the config's scene
   bool has_next = false;  // a change of on/off ahead (within a week)
   bool next_on = false;   // what it changes to

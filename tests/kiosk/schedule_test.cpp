@@ -131,6 +131,23 @@ TEST(Schedule, FadesAndNightDimming) {
   EXPECT_NEAR(evaluate_schedule(s, at(kSun, 0, 30)).level, 0.4, 1e-12);
 }
 
+// Quieter at night, and the sound fades in and out with the picture.
+TEST(Schedule, NightVolumeFadesWithThePicture) {
+  const Schedule s = parse(std::string(kWeek).insert(0, "night_volume = 0.3\n"));
+  EXPECT_DOUBLE_EQ(evaluate_schedule(s, at(kMon, 7, 0, 1)).volume, 0.25);       // fading in
+  EXPECT_DOUBLE_EQ(evaluate_schedule(s, at(kMon, 7, 30)).volume, 1.0);          // day: full
+  EXPECT_DOUBLE_EQ(evaluate_schedule(s, at(kMon, 12, 0)).volume, 0.0);          // off: silent
+  EXPECT_NEAR(evaluate_schedule(s, at(kMon, 22, 30)).volume, 0.3, 1e-12);       // night
+  EXPECT_NEAR(evaluate_schedule(s, at(kMon, 22, 30)).level, 0.4, 1e-12);        // its own level
+  EXPECT_NEAR(evaluate_schedule(s, at(kMon, 23, 29, 55)).volume, 0.15, 1e-12);  // fading out
+  EXPECT_EQ(describe_schedule(s, at(kMon, 22, 30), "default"),
+            "now mon 22:30: screen on, level 0.40, volume 0.30 (night), scene eigen-fireplace "
+            "(21:00-23:30); next: off at mon 23:30 (in 1h 0m)");
+  // Without night_volume the sound only fades; a wrong one is refused.
+  EXPECT_DOUBLE_EQ(evaluate_schedule(parse(kWeek), at(kMon, 22, 30)).volume, 1.0);
+  EXPECT_NE(error_of("night_volume = 1.5\n").find("schedule.night_volume"), std::string::npos);
+}
+
 TEST(Schedule, ScenePerTimeRange) {
   const Schedule s = parse(kWeek);
   ASSERT_EQ(s.scenes.size(), 2u);
