@@ -94,6 +94,11 @@ void SdNotify::frame_presented(uint64_t frames, Clock::time_point now) {
     send(msg, std::snprintf(msg, sizeof(msg), "READY=1\nSTATUS=%s: frame %llu presented", scene_,
                             static_cast<unsigned long long>(frames)));
   }
+  if (idle_) {  // the screen back on: the rate counts from now
+    idle_ = false;
+    status_since_ = now;
+    status_frames_ = frames;
+  }
   if (ping_ns_ > 0 && now >= next_ping_) {
     next_ping_ = now + std::chrono::nanoseconds(ping_ns_);
     send("WATCHDOG=1", 10);
@@ -119,10 +124,14 @@ void SdNotify::set_scene(const std::string& scene) {
 
 void SdNotify::idle(Clock::time_point now) {
   if (fd_ < 0) return;
-  if (!ready_) {  // started with the screen scheduled off: running is ready
+  if (!idle_) {  // `systemctl status` says so, not the last frame rate
+    idle_ = true;
+    char msg[160];
+    send(msg, std::snprintf(msg, sizeof(msg), "%sSTATUS=%s: screen off", ready_ ? "" : "READY=1\n",
+                            scene_));
+    // Started with the screen scheduled off: running is ready.
     ready_ = true;
     status_since_ = now;
-    send("READY=1\nSTATUS=screen off", 25);
   }
   if (ping_ns_ <= 0 || now < next_ping_) return;
   next_ping_ = now + std::chrono::nanoseconds(ping_ns_);

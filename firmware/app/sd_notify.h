@@ -7,7 +7,8 @@
 //   WATCHDOG=1 from the frame loop after a presented frame, at most every
 //              WATCHDOG_USEC/2: a hung GPU or loop stops the pings and
 //              systemd restarts it
-//   STATUS=    the scene and the frame rate, about once a second
+//   STATUS=    the scene and the frame rate, about once a second ("SCENE:
+//              screen off" while the screen is switched off)
 //   RELOADING=1 (with MONOTONIC_USEC=) when a reload (SIGHUP, `reload`)
 //              begins, READY=1 again when it is done
 //   WATCHDOG=1 also while the screen is switched off on purpose (the loop
@@ -61,6 +62,7 @@ class SdNotify {
   socklen_t addr_len_ = 0;
   int64_t ping_ns_ = 0;
   bool ready_ = false;
+  bool idle_ = false;  // the screen is off: STATUS= said so once
   Clock::time_point next_ping_{};
   Clock::time_point status_since_{};
   uint64_t status_frames_ = 0;

@@ -358,8 +358,15 @@ TEST(LiveControl, ReloadAndSighupRereadTheConfig) {
   EXPECT_NE(reloading.find("MONOTONIC_USEC="), std::string::npos) << notify.seen;
   EXPECT_EQ(notify.next_with("READY=1", 60'000), "READY=1") << notify.seen << c.log();
   EXPECT_EQ(json_string(c.ask("state"), "scene"), kScenes + "/default.toml");
-  // systemctl status names the scene now shown (STATUS= about once a second).
+  // systemctl status names the scene now shown (STATUS= about once a second),
+  // and says when the screen is off rather than its last frame rate.
   EXPECT_NE(notify.next_with("STATUS=default.toml: ", 30'000), "") << notify.seen;
+  EXPECT_EQ(c.ask("screen off"), "ok");
+  EXPECT_EQ(notify.next_with("STATUS=default.toml: screen off", 30'000),
+            "STATUS=default.toml: screen off")
+      << notify.seen;
+  EXPECT_EQ(c.ask("screen on"), "ok");
+  EXPECT_NE(notify.next_with(" fps", 30'000), "") << notify.seen;
   write_file(config, "scene = 5\n");
   const std::string r = c.ask("reload");
   EXPECT_EQ(r, "error: " + config + ": scene: expected a string, got 5; the running settings stay")
