@@ -13,10 +13,11 @@
 # temporary folder and never kept (the footage's licence is unclear).
 # Exit status: measure's (0 inside, 1 outside, 2 bad input); 77 if the shared
 # clips are not here. OWN_FOOTAGE_KEYS adds eigenflame keys (to try settings);
-# OWN_FOOTAGE_KEEP=1 keeps the folder (model, scene, frames) to look at.
+# OWN_FOOTAGE_KEEP=1 keeps the folder (model, scene, frames) to look at;
+# OWN_FOOTAGE_SEED (default 5) seeds the walk.
 set -u
 if [ $# -lt 2 ]; then
-  sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 fi
 . "$(dirname "$0")/common.sh"
@@ -41,7 +42,7 @@ read -r height base < <(awk -v w="$w" -v h="$h" 'BEGIN {
   v = 0.11647 * (w > h ? h / w : 1); printf "%.6f %.6f\n", v, 0.05 - v / 2 }')
 cat >"$out/scene.toml" <<SCENE
 # The model of $clip, framed as the clip is: the whole image on black, 1:1.
-seed = 5
+seed = ${OWN_FOOTAGE_SEED:-5}
 [background]
 color = "#000000"
 [camera]
@@ -58,6 +59,6 @@ crossfade = 0
 edge_fade = 0
 ${OWN_FOOTAGE_KEYS:-}
 SCENE
-render "$out/scene.toml" 5 "$out/frames"
+render "$out/scene.toml" "${OWN_FOOTAGE_SEED:-5}" "$out/frames"
 echo "$clip: ingest --as-filmed ($size), build an EigenFire per frame, played 256x256 at 1:1, $frames frames at 60 fps:"
 "$tool" measure "$out/frames" --fps 60 --against "$kind" --flames "$flames" --source "$clip" "$@"
