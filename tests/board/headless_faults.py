@@ -28,7 +28,7 @@ import time
 
 # check(), wait_for() and FAILED: tests/support/checks.py
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
-from checks import FAILED, check, wait_for  # noqa: E402
+from checks import FAILED, check, run_case, wait_for  # noqa: E402
 
 CASE, BUILD = sys.argv[1], os.path.abspath(sys.argv[2])
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -192,10 +192,4 @@ def case_model_replaced():
     check(not bad, "no warning or error logged: %s" % bad)
 
 
-try:
-    globals()["case_" + CASE]()
-except AssertionError as e:
-    FAILED.append(str(e))
-    print("FAIL " + str(e), flush=True)
-print("%s: %s" % (CASE, "FAILED" if FAILED else "passed"), flush=True)
-sys.exit(1 if FAILED else 0)
+run_case(CASE, globals())
