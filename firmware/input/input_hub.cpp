@@ -171,6 +171,7 @@ void InputHub::drain_room(WindField& wind) {
     }
     wind.push(g.wind);
     room_origin_ns_.store(g.origin_ns, std::memory_order_relaxed);
+    room_received_ns_.store(g.received_ns, std::memory_order_relaxed);
     room_due_ns_.store(g.due_ns, std::memory_order_relaxed);
     room_applied_ns_.store(realtime_ns(), std::memory_order_relaxed);
     room_applied_.fetch_add(1, std::memory_order_release);
@@ -267,8 +268,9 @@ std::string InputHub::state_json() const {
   j["inputs"] = std::move(inputs);
   if (room_) {
     // The room (input/room.h): the last received gust's times are
-    // CLOCK_REALTIME ns: when it left its origin, when it was due here (origin
-    // + the plane-S delay for this position), when it was started here.
+    // CLOCK_REALTIME ns: when it left its origin, when its message came in
+    // here, when it was due here (origin + the plane-S delay for this
+    // position), when it was started here.
     auto count = [&](RoomNote n) {
       return room_counts_[static_cast<int>(n)].load(std::memory_order_relaxed);
     };
@@ -285,6 +287,7 @@ std::string InputHub::state_json() const {
     room["dropped"] = room_overflow_.load(std::memory_order_relaxed) + room_out_.dropped();
     room["last_sent_ns"] = room_sent_ns_.load(std::memory_order_relaxed);
     room["last"] = {{"origin_ns", room_origin_ns_.load(std::memory_order_relaxed)},
+                    {"received_ns", room_received_ns_.load(std::memory_order_relaxed)},
                     {"due_ns", room_due_ns_.load(std::memory_order_relaxed)},
                     {"applied_ns", room_applied_ns_.load(std::memory_order_relaxed)}};
     j["room"] = std::move(room);

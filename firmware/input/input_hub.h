@@ -91,7 +91,8 @@ class InputHub {
   struct RoomIn {
     WindEvent wind;
     int64_t due_mono_ns = 0;
-    int64_t origin_ns = 0, due_ns = 0;  // CLOCK_REALTIME: left the origin, due here
+    // CLOCK_REALTIME: left the origin, received here, due here.
+    int64_t origin_ns = 0, received_ns = 0, due_ns = 0;
   };
   // MQTT thread only.
   bool take_room_gust(RoomOut& out) { return room_out_.pop(out); }
@@ -143,7 +144,8 @@ class InputHub {
   int64_t room_last_drain_ns_ = 0;
   std::array<std::atomic<uint64_t>, 6> room_counts_{};
   std::atomic<uint64_t> room_applied_{0}, room_overflow_{0};
-  std::atomic<int64_t> room_sent_ns_{0}, room_origin_ns_{0}, room_due_ns_{0}, room_applied_ns_{0};
+  std::atomic<int64_t> room_sent_ns_{0}, room_origin_ns_{0}, room_received_ns_{0}, room_due_ns_{0},
+      room_applied_ns_{0};
   std::atomic<int> room_waiting_{0};
   KioskControl* kiosk_ = nullptr;
 };

@@ -422,7 +422,8 @@ void MqttBridge::on_room_message(const mosquitto_message* m) {
   }
   const auto delay_ns = static_cast<int64_t>(std::llround(t.delay.to_double() * 1e9));
   const int64_t due_ns = g->t_ns + delay_ns;
-  int64_t lead = due_ns - realtime_ns();
+  const int64_t received_ns = realtime_ns();
+  int64_t lead = due_ns - received_ns;
   if (lead > 120'000'000'000) {
     hub_.room_note(InputHub::RoomNote::kInvalid);
     LOG_WARN("mqtt: room: dropped gust %s#%llu due %.1f s from now (clocks apart? run NTP)",
@@ -452,6 +453,7 @@ void MqttBridge::on_room_message(const mosquitto_message* m) {
   in.wind.z = Fixed::from_double(g->z) * t.gain;
   in.due_mono_ns = mono + lead;
   in.origin_ns = g->t_ns;
+  in.received_ns = received_ns;
   in.due_ns = due_ns;
   if (!hub_.give_room_gust(in)) {
     LOG_WARN("mqtt: room: the frame loop's room queue is full; gust %s#%llu dropped",
