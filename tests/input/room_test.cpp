@@ -12,7 +12,9 @@
 
 #include "app/config_file.h"
 #include "core/error.h"
+#include "input/input_hub.h"
 #include "scene/element.h"
+#include "support/allocation_counter.h"
 #include "wind/wind_field.h"
 
 namespace candela {
@@ -151,6 +153,51 @@ TEST(RoomMessage, BadMessagesAreRefusedWithTheReason) {
     EXPECT_FALSE(parse_room_gust(c.payload, &error)) << c.payload;
     EXPECT_NE(error.find(c.reason), std::string::npos) << c.payload << " -> " << error;
   }
+}
+
+// The frame loop's side: local gusts go out, received ones wait for their
+// time, nothing received goes out again, nothing allocated.
+TEST(RoomHub, GustsOutAndInWithoutAllocating) {
+  InputHub hub({}, WindSpec{});
+  WindField wind;
+  InputHub::RoomOut out;
+  // No room: nothing for the room.
+  ASSERT_EQ(hub.answer("gust left 2"), "ok");
+  hub.drain(wind);
+  EXPECT_EQ(wind.active_gusts(), 1);
+  EXPECT_FALSE(hub.take_room_gust(out));
+
+  hub.enable_room(1, 0);
+  ASSERT_EQ(hub.answer("gust left 2"), "ok");
+  ASSERT_EQ(hub.answer("wind 0.5 0"), "ok");  // steady wind: not a gust, not sent
+  InputHub::RoomIn later, due;
+  later.wind = {WindEvent::Type::kGust, Fixed::from_int(1), Fixed{}};
+  later.due_mono_ns = monotonic_ns() + 60'000'000'000;
+  due = later;
+  due.due_mono_ns = monotonic_ns() - 1;
+  due.origin_ns = 11;
+  due.due_ns = 22;
+  ASSERT_TRUE(hub.give_room_gust(later));
+  ASSERT_TRUE(hub.give_room_gust(due));
+  const int64_t before = realtime_ns();
+  test::start_counting_allocations();
+  hub.drain(wind);
+  hub.drain(wind);
+  const long allocations = test::stop_counting_allocations();
+  if (test::allocations_counted()) {
+    EXPECT_EQ(allocations, 0);
+  }
+  EXPECT_EQ(wind.active_gusts(), 3);  // the first, the local one, the due one
+  ASSERT_TRUE(hub.take_room_gust(out));
+  EXPECT_EQ(out.wind.type, WindEvent::Type::kGust);
+  EXPECT_NEAR(out.wind.x.to_double(), 2.0, 1e-3);
+  EXPECT_GE(out.t_ns, before - 1'000'000'000);
+  EXPECT_LE(out.t_ns, realtime_ns());
+  EXPECT_FALSE(hub.take_room_gust(out));  // the received one is not passed on
+  const std::string state = hub.state_json();
+  EXPECT_NE(state.find(R"("applied":1,"waiting":1)"), std::string::npos) << state;
+  EXPECT_NE(state.find(R"("origin_ns":11)"), std::string::npos) << state;
+  EXPECT_NE(state.find(R"("due_ns":22)"), std::string::npos) << state;
 }
 
 std::string write_config(const std::string& body) {
