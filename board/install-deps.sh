@@ -66,7 +66,7 @@ arm64=(
   libdrm-dev:arm64 libgbm-dev:arm64 libpng-dev:arm64 libx11-dev:arm64 zlib1g-dev:arm64
   libtomlplusplus-dev:arm64 libgpiod-dev:arm64 libasound2-dev:arm64 libmosquitto-dev:arm64
   libcamera-dev:arm64
-  libfftw3-dev:arm64  # tests/eigenflame's reference FFT
+  libfftw3-dev:arm64  # tests/elements/eigenflame's reference FFT
   libgtest-dev:arm64 libgmock-dev:arm64
 )
 # Adds arm64 to dpkg's architectures (once) so the :arm64 packages can be had.
