@@ -58,6 +58,6 @@ board/arm64/package.sh build-arm64
 
 # libFuzzer (clang, build-fuzz/): the model reader with the players built from
 # it, the scene reader, noise tables, the control-socket commands and the
-# dataset manifest, 20 s each from tests/fuzz/corpus/; any crash, leak,
+# dataset manifest, 10 s each from tests/fuzz/corpus/; any crash, leak,
 # timeout or > 2 GB RSS fails the run.
-tests/fuzz/run-fuzz.sh 20
+tests/fuzz/run-fuzz.sh 10

@@ -11,7 +11,9 @@
 #include "display/display.h"
 #include "elements/eigenflame/eigen_renderer.h"
 #include "elements/eigenflame/eigenflame.h"
+#include "elements/eigenflame/graph_walker.h"
 #include "gl/gles.h"
+#include "gl/render_target.h"
 #include "model/flame_model.h"
 #include "model/model_writer.h"
 #include "scene/scene.h"
@@ -95,6 +97,67 @@ TEST(EigenReconstruction, GpuMatchesCpuForStoredFrames) {
       EXPECT_LT(d.mean, 1.0);
       EXPECT_LE(d.max, 2.0);
     }
+}
+
+// The frame cache (a walk's frames kept once drawn): a held frame read back
+// from it, and a frame near a jump (its first kBlendComponents low-passed
+// with its neighbours': the difference summed over the cached frame), come
+// out as the full sum gives them, within a gray level.
+TEST(EigenReconstruction, CachedFramesMatchTheFullSum) {
+  auto display = headless(64, 64);
+  // The built-in fire: 300 frames of 299 components (the candle model's 3600
+  // frames would take more layers than a GPU need have; its 80-component
+  // sum is cheap anyway).
+  const auto m =
+      model::FlameModel::load(std::string(CANDELA_SOURCE_DIR) + "/firmware/models/fire.cmodel");
+  const size_t px = m.mean.pixels();
+  const int w = m.width(), h = m.height(), e = m.components();
+  for (StackLayout layout : {StackLayout::kPacked, StackLayout::kLayered}) {
+    EigenReconstructor r(image_stack_of(m.mean), image_stack_of(m.eigen), layout, e);
+    ASSERT_TRUE(r.enable_cache(m.weights, m.frames(), e));
+    RenderTarget out = RenderTarget::checked(w, h, "test");
+    std::vector<uint8_t> full(px * 4), cached(px * 4);
+    std::vector<float> near(static_cast<size_t>(e));
+    double worst_held = 0, worst_near = 0, sum_held = 0;
+    size_t n = 0;
+    const auto read = [&](std::vector<uint8_t>& to) {
+      glPixelStorei(GL_PACK_ALIGNMENT, 1);
+      glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, to.data());
+    };
+    for (int f = 1; f + 1 < m.frames(); f += 53) {
+      // Held: the frame's own weights.
+      r.reconstruct(m.weights_of(f));
+      read(full);
+      r.cache_frame(f);
+      out.bind();
+      r.draw_near_frame_at(m.weights_of(f), f, 0, 0);
+      read(cached);
+      for (size_t p = 0; p < px; ++p) {
+        const double d = std::abs(full[p * 4] - cached[p * 4]);
+        worst_held = std::max(worst_held, d);
+        sum_held += d;
+        ++n;
+      }
+      // Near a jump: as GraphPlayer blends it.
+      const auto wp = m.weights_of(f - 1), wf = m.weights_of(f), wn = m.weights_of(f + 1);
+      for (int k = 0; k < e; ++k)
+        near[static_cast<size_t>(k)] =
+            k < GraphWalker::kBlendComponents ? (wp[k] + wf[k] + wn[k]) * (1.0f / 3.0f) : wf[k];
+      r.reconstruct(near);
+      read(full);
+      out.bind();
+      r.draw_near_frame_at(near, f, 0, 0);
+      read(cached);
+      for (size_t p = 0; p < px; ++p)
+        worst_near = std::max(worst_near, std::abs(full[p * 4] - cached[p * 4]) + 0.0);
+    }
+    std::printf("%s: held frames mean |cached - full| = %.4f, max %.0f; near a jump max %.0f\n",
+                layout == StackLayout::kPacked ? "packed" : "layered",
+                sum_held / static_cast<double>(n), worst_held, worst_near);
+    EXPECT_LE(worst_held, 1.0);
+    EXPECT_LT(sum_held / static_cast<double>(n), 0.02);
+    EXPECT_LE(worst_near, 1.0);
+  }
 }
 
 // A model of footage keeps an EigenFire per frame (a 20 s clip at 25 fps:

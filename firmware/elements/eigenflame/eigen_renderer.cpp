@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/log.h"
 #include "model/flame_model.h"
 
 namespace candela {
@@ -33,6 +34,7 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
       components_(std::clamp(std::min(eigen.count, max_components), 0, kMaxComponents)),
       entries_(components_ + 1),
       layers_(layout == StackLayout::kPacked ? (entries_ + 3) / 4 : entries_),
+      layered_(layout == StackLayout::kLayered),
       mean_scale_(mean.scale[0]),
       mean_offset_(mean.offset[0]),
       eigen_scale_(eigen.scale),
@@ -71,12 +73,7 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
 
   const std::string defines = "#define MAX_VEC4 " + std::to_string(coef_.size() / 4) + "\n" +
                               (layout == StackLayout::kLayered ? "#define LAYERED\n" : "");
-  program_ = Program::from_library("fullscreen.vert", "eigenflame_reconstruct.frag", defines);
-  u_stack_ = program_.uniform("u_stack");
-  u_layers_ = program_.uniform("u_layers");
-  u_coef_ = program_.uniform("u_coef");
-  u_bias_ = program_.uniform("u_bias");
-  u_origin_ = program_.uniform("u_origin");
+  full_ = ReconstructProgram(defines);
   target_ = RenderTarget::checked(width_, height_, "eigenflame: reconstruction");
   vao_ = make_vertex_array();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -87,31 +84,111 @@ void EigenReconstructor::reconstruct(std::span<const float> weights) {
   draw_at(weights, 0, 0);
 }
 
+EigenReconstructor::ReconstructProgram::ReconstructProgram(const std::string& defines)
+    : program(Program::from_library("fullscreen.vert", "eigenflame_reconstruct.frag", defines)),
+      stack(program.uniform("u_stack")),
+      layers(program.uniform("u_layers")),
+      coef(program.uniform("u_coef")),
+      bias(program.uniform("u_bias")),
+      origin(program.uniform("u_origin")),
+      cache(program.uniform("u_cache")),
+      frame(program.uniform("u_frame")) {}
+
 void EigenReconstructor::draw_at(std::span<const float> weights, int x, int y) {
+  draw_with(full_, weights, nullptr, -1, x, y);
+}
+
+void EigenReconstructor::draw_with(const ReconstructProgram& p, std::span<const float> weights,
+                                   const float* base, int frame, int x, int y) {
   // Fold weights and dequantisation: sum_k w_k (offset_k + scale_k q_k)
   //   = sum_k (w_k scale_k) q_k + sum_k w_k offset_k.
+  // From a cached frame (`base`, its weights), only the difference is summed:
+  // the mean and every component past the last that differs add nothing.
   const int n = std::min(components_, static_cast<int>(weights.size()));
-  coef_[0] = mean_scale_;
-  float bias = mean_offset_;
+  coef_[0] = base ? 0.0f : mean_scale_;
+  float bias = base ? 0.0f : mean_offset_;
+  int last = components_;  // entries summed after the mean
+  if (base) last = 0;
   for (int k = 0; k < components_; ++k) {
-    const float w = k < n ? weights[static_cast<size_t>(k)] : 0.0f;
+    const float w = (k < n ? weights[static_cast<size_t>(k)] : 0.0f) - (base ? base[k] : 0.0f);
     coef_[static_cast<size_t>(k) + 1] = w * eigen_scale_[static_cast<size_t>(k)];
     bias += w * eigen_offset_[static_cast<size_t>(k)];
+    if (base && w != 0.0f) last = k + 1;
   }
+  const int layers = last == components_ ? layers_ : layered_ ? last + 1 : last / 4 + 1;
   glViewport(x, y, width_, height_);
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_SCISSOR_TEST);
-  program_.use();
+  p.program.use();
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D_ARRAY, stack_.get());
-  glUniform1i(u_stack_, 0);
-  glUniform1i(u_layers_, layers_);
-  glUniform4fv(u_coef_, (entries_ + 3) / 4, coef_.data());
-  glUniform1f(u_bias_, bias);
-  glUniform2i(u_origin_, x, y);
+  glUniform1i(p.stack, 0);
+  if (frame >= 0) {
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, cache_.get());
+    glUniform1i(p.cache, 1);
+    glUniform1i(p.frame, frame);
+    glActiveTexture(GL_TEXTURE0);
+  }
+  glUniform1i(p.layers, layers);
+  glUniform4fv(p.coef, (entries_ + 3) / 4, coef_.data());
+  glUniform1f(p.bias, bias);
+  glUniform2i(p.origin, x, y);
   glBindVertexArray(vao_.get());
   glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+bool EigenReconstructor::enable_cache(std::span<const float> frame_weights, int frames,
+                                      int stride) {
+  // 2 bytes a pixel a frame: R16UI, the unclamped sum in 1/64 gray levels,
+  // so that a difference added later starts from the true sum (an 8-bit,
+  // clamped copy would lose what lies below black).
+  constexpr size_t kMaxCacheBytes = size_t{64} << 20;
+  GLint max_layers = 0;
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+  const size_t bytes = size_t{2} * width_ * height_ * static_cast<size_t>(frames);
+  if (frames < 1 || stride < components_ ||
+      frame_weights.size() < static_cast<size_t>(frames) * static_cast<size_t>(stride) ||
+      frames > max_layers || bytes > kMaxCacheBytes)
+    return false;
+  cache_ = make_texture();
+  glBindTexture(GL_TEXTURE_2D_ARRAY, cache_.get());
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, GL_R16UI, width_, height_, frames);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  cache_fbo_ = make_framebuffer();
+  const std::string defines = "#define MAX_VEC4 " + std::to_string(coef_.size() / 4) + "\n" +
+                              (layered_ ? "#define LAYERED\n" : "");
+  fill_ = ReconstructProgram(defines + "#define TO_CACHE\n");
+  near_ = ReconstructProgram(defines + "#define FROM_CACHE\n");
+  cached_.assign(static_cast<size_t>(frames), false);
+  cache_weights_ = frame_weights;
+  cache_stride_ = stride;
+  cache_frames_ = frames;
+  return true;
+}
+
+void EigenReconstructor::cache_frame(int frame) {
+  if (frame < 0 || frame >= cache_frames_ || cached_[static_cast<size_t>(frame)]) return;
+  glBindFramebuffer(GL_FRAMEBUFFER, cache_fbo_.get());
+  glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, cache_.get(), 0, frame);
+  const std::span<const float> w =
+      cache_weights_.subspan(static_cast<size_t>(frame) * static_cast<size_t>(cache_stride_),
+                             static_cast<size_t>(components_));
+  draw_with(fill_, w, nullptr, -1, 0, 0);
+  cached_[static_cast<size_t>(frame)] = true;
+}
+
+void EigenReconstructor::draw_near_frame_at(std::span<const float> weights, int frame, int x,
+                                            int y) {
+  if (frame < 0 || frame >= cache_frames_ || !cached_[static_cast<size_t>(frame)]) {
+    draw_at(weights, x, y);
+    return;
+  }
+  draw_with(near_, weights,
+            cache_weights_.data() + static_cast<size_t>(frame) * static_cast<size_t>(cache_stride_),
+            frame, x, y);
 }
 
 // ---------------------------------------------------------------------------
@@ -173,6 +250,17 @@ EigenRenderer::EigenRenderer(const ImageStack& mean, const ImageStack& eigen, St
 }
 
 EigenRenderer::~EigenRenderer() { batch_->remove(&job_); }
+
+void EigenRenderer::cache_frames(std::span<const float> frame_weights, int frames, int stride) {
+  // Worth it for a long sum only: the candle model's 80 components cost 21
+  // fetches a pixel, its 3600 frames 100 MB; the fire's 299, 75 fetches.
+  constexpr int kCacheFromComponents = 128;
+  if (recon_.components() < kCacheFromComponents) return;
+  const FramebufferRestore caller;
+  if (!recon_.enable_cache(frame_weights, frames, stride))
+    LOG_INFO("eigenflame: %d frames of %dx%d not cached (over 64 MiB or the GPU's layers)", frames,
+             recon_.width(), recon_.height());
+}
 
 void EigenRenderer::prepare() { batch_->render(); }
 
@@ -338,10 +426,13 @@ void EigenBatch::render() {
     any = any || j->redraw;
   }
   if (!any) return;
-  // 1. Every flame's reconstruction into the gray atlas.
+  // 1. Every flame's reconstruction into the gray atlas: from its frame
+  // cache where it has one (first filling the frame's layer if new).
+  for (EigenSpriteJob* j : members_)
+    if (j->redraw && j->recon->caches()) j->recon->cache_frame(j->frame);
   gray_.bind();
   for (EigenSpriteJob* j : members_)
-    if (j->redraw) j->recon->draw_at(j->weights, j->gray_x, j->gray_y);
+    if (j->redraw) j->recon->draw_near_frame_at(j->weights, j->frame, j->gray_x, j->gray_y);
   // 2. Glow, horizontal then vertical, each flame in its own region.
   glow_.use();
   glUniform1i(ug_.source, 0);

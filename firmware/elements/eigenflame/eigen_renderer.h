@@ -13,6 +13,7 @@
 #include <limits>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "gl/math.h"
@@ -56,6 +57,26 @@ class EigenReconstructor {
   void reconstruct(std::span<const float> weights);
   // Renders into the bound framebuffer at (x, y), model-sized.
   void draw_at(std::span<const float> weights, int x, int y);
+
+  // The frame cache. A graph walk shows the model's own frames, each again
+  // and again over the hours: each frame's reconstruction is kept (an R8
+  // texture-array layer) the first time it is shown, and later draws of it
+  // read one texel instead of summing every component. `frame_weights`
+  // holds `frames` rows of `stride` weights and must outlive the
+  // reconstructor. Returns false (no cache; draws stay on the full sum)
+  // where the frames would take over 64 MiB or more layers than the GPU has.
+  bool enable_cache(std::span<const float> frame_weights, int frames, int stride);
+  // Makes sure frame `frame`'s reconstruction is cached (a full sum into its
+  // layer the first time; binds the cache's framebuffer then). Call outside
+  // the draw into the target: it changes the bound framebuffer.
+  void cache_frame(int frame);
+  // As draw_at, for weights near those of model frame `frame` (cached by
+  // cache_frame): the cached frame plus the sum over the components in which
+  // the weights differ from it (none for a held frame: exactly the full
+  // sum's pixels; the first kBlendComponents near a walk's jump). Without a
+  // cache or a frame (< 0), the full sum.
+  void draw_near_frame_at(std::span<const float> weights, int frame, int x, int y);
+  bool caches() const { return cache_frames_ > 0; }
   GLuint texture() const { return target_.texture(); }
   GLuint framebuffer() const { return target_.framebuffer(); }
   int width() const { return width_; }
@@ -63,15 +84,34 @@ class EigenReconstructor {
   int components() const { return components_; }
 
  private:
+  // eigenflame_reconstruct.frag: the full sum, the sum into the cache
+  // (TO_CACHE) and a cached frame plus a difference (FROM_CACHE).
+  struct ReconstructProgram {
+    ReconstructProgram() = default;
+    explicit ReconstructProgram(const std::string& defines);
+    Program program;
+    GLint stack = -1, layers = -1, coef = -1, bias = -1, origin = -1, cache = -1, frame = -1;
+  };
+  // `base`: the cached frame's weights (sum only the difference; `frame` its
+  // layer), or null for the full sum.
+  void draw_with(const ReconstructProgram& p, std::span<const float> weights, const float* base,
+                 int frame, int x, int y);
+
   int width_, height_, components_, entries_, layers_;
-  Program program_;
+  bool layered_;
+  ReconstructProgram full_, fill_, near_;
   Texture stack_;
   RenderTarget target_;
   VertexArray vao_;
-  GLint u_stack_, u_layers_, u_coef_, u_bias_, u_origin_;
   std::array<float, 4 * (kMaxComponents / 4 + 2)> coef_{};
   float mean_scale_, mean_offset_;
   std::span<const float> eigen_scale_, eigen_offset_;
+  // The frame cache (enable_cache).
+  int cache_frames_ = 0, cache_stride_ = 0;
+  std::span<const float> cache_weights_;
+  std::vector<bool> cached_;
+  Texture cache_;
+  Framebuffer cache_fbo_;
 };
 
 struct FlameLookSettings {
@@ -105,6 +145,7 @@ class EigenBatch;
 struct EigenSpriteJob {
   EigenReconstructor* recon = nullptr;
   std::span<const float> weights;  // read at every prepare
+  int32_t frame = -1;              // the model frame the weights are near (-1: none)
   GLuint ramp = 0;                 // 256x1 colour ramp texture
   float brightness = 1, glow_strength = 0, edge_fade = 0;
   int glow_w = 0, glow_h = 0;          // half size, padded by the glow's radius
@@ -148,6 +189,11 @@ class EigenRenderer {
   // Adds the flame and its glow onto the bound framebuffer.
   void composite(const Mat4& view, const Mat4& view_projection, const FlamePose& pose);
   const EigenReconstructor& reconstructor() const { return recon_; }
+  // The model's frames (rows of `stride` weights), for the frame cache
+  // (EigenReconstructor::enable_cache); then set_frame names the frame the
+  // weights are near, at each update.
+  void cache_frames(std::span<const float> frame_weights, int frames, int stride);
+  void set_frame(int32_t frame) { job_.frame = frame; }
 
  private:
   EigenReconstructor recon_;

@@ -184,6 +184,11 @@ class EigenFlame final : public Element {
       renderer_ =
           std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen), s.layout,
                                           e, look, edited(player_->weights()), batch);
+      // The walk shows the model's own frames: each one's reconstruction kept.
+      const int stride = m.components();
+      if (stride > 0)
+        renderer_->cache_frames(m.weights, static_cast<int>(m.weights.size() / stride), stride);
+      renderer_->set_frame(player_->shown_frame());
     }
     if (s.embers.enabled) {
       embers_ = Program::from_library("floor_quad.vert", "eigenflame_embers.frag");
@@ -219,6 +224,7 @@ class EigenFlame final : public Element {
       player_->set_crossfade(s_.crossfade);
       player_->step(lean_);
       edited(player_->weights());
+      renderer_->set_frame(player_->shown_frame());
     } else if (arp_) {
       phase_ += per_step;
       while (phase_ >= Fixed::from_int(1)) {
