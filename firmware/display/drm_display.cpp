@@ -121,6 +121,7 @@ class DrmDisplay final : public Display {
       }
     } catch (...) {
       release();
+      close_hotplug_monitor();
       throw;
     }
     event_context_.version = 2;
@@ -143,8 +144,7 @@ class DrmDisplay final : public Display {
           static_cast<long long>(missed_),
           pauses_ ? (", " + std::to_string(pauses_) + " times without DRM master").c_str() : "");
     release();
-    if (monitor_) udev_monitor_unref(monitor_);
-    if (udev_) udev_unref(udev_);
+    close_hotplug_monitor();
   }
 
   std::string_view name() const override { return "drm"; }
@@ -330,6 +330,14 @@ class DrmDisplay final : public Display {
     uevent_fd_ = udev_monitor_get_fd(monitor_);
     LOG_INFO("drm: following connector hot-plug on %s through %s uevents", out_.device.c_str(),
              source);
+  }
+
+  void close_hotplug_monitor() {
+    if (monitor_) udev_monitor_unref(monitor_);
+    if (udev_) udev_unref(udev_);
+    monitor_ = nullptr;
+    udev_ = nullptr;
+    uevent_fd_ = -1;
   }
 
   // Waits up to timeout_ms (0: not at all) for a uevent of this card, then
