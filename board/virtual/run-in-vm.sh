@@ -268,7 +268,11 @@ if [ "$accel" = auto ]; then
 fi
 case "$accel" in
   kvm) accel_args=(-accel kvm -cpu host -smp 2) ;;
-  tcg) accel_args=(-accel "tcg,tb-size=${CANDELA_VBOARD_TB_MB:-256}" -cpu "${CANDELA_VBOARD_CPU_MODEL:-max}" -smp "${CANDELA_VBOARD_CPUS:-1}") ;;
+  # Not AVX2 under TCG: Debian 12's QEMU (7.2) emulates vpgatherdd wrongly (it
+  # faulted at the base address - 2^31 with every index small), and llvmpipe's
+  # texture fetches gather: candela on the DRM display died with SIGSEGV in
+  # its shaders' code within a minute at 1280x720 (tests/bench/vboard_realtime.sh).
+  tcg) accel_args=(-accel "tcg,tb-size=${CANDELA_VBOARD_TB_MB:-256}" -cpu "${CANDELA_VBOARD_CPU_MODEL:-max,-avx2}" -smp "${CANDELA_VBOARD_CPUS:-1}") ;;
   *) die "CANDELA_VBOARD_ACCEL: expected auto, kvm or tcg, got '$accel'" ;;
 esac
 

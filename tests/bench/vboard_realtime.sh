@@ -32,6 +32,8 @@ trap 'rm -rf "$out"' EXIT
 # control socket and its RSS read from /proc once a minute.
 "$vboard" --timeout $((minutes * 60 + 300)) --out "$out" "
   sock=/tmp/candela.sock
+  # A crash leaves its core in the output folder, and its stacks in the log.
+  ulimit -c unlimited; echo \$VBOARD_OUT/core > /proc/sys/kernel/core_pattern
   env HOME=/tmp XDG_CACHE_HOME=/tmp $candela --display drm --size 1280x720 --mute \
     --scene $scene --control \$sock >/tmp/candela.log 2>&1 &
   pid=\$!
@@ -45,6 +47,9 @@ trap 'rm -rf "$out"' EXIT
   alive=0; kill -0 \$pid 2>/dev/null && alive=1
   kill -TERM \$pid 2>/dev/null; wait \$pid; echo \"exit \$? alive \$alive\"
   tail -5 /tmp/candela.log
+  for c in \$VBOARD_OUT/core*; do
+    [ -f \"\$c\" ] && gdb -q -batch -ex 'thread apply all bt 12' $candela \"\$c\" 2>&1 | grep -v '^\\[New LWP' | tail -80
+  done
 " | tee "$out/log.txt"
 
 /usr/bin/python3 - "$out/log.txt" "$rss_mb" <<'PY'
