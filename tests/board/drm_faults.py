@@ -23,7 +23,6 @@ import ctypes
 import fcntl
 import os
 import signal
-import struct
 import subprocess
 import sys
 import tempfile
@@ -32,6 +31,7 @@ import time
 # check(), wait_for() and FAILED: tests/support/checks.py
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
 from checks import FAILED, check, wait_for  # noqa: E402
+from drm_query import crtc_state, first_crtc  # noqa: E402
 
 CANDELA = sys.argv[1]
 CARD = "/dev/dri/card0"
@@ -39,26 +39,11 @@ WORK = tempfile.mkdtemp(prefix="candela-drm-faults-")
 
 DRM_IOCTL_SET_MASTER = 0x641E
 DRM_IOCTL_DROP_MASTER = 0x641F
-DRM_IOCTL_MODE_GETRESOURCES = 0xC04064A0  # _IOWR('d', 0xA0, struct drm_mode_card_res)
-DRM_IOCTL_MODE_GETCRTC = 0xC06864A1  # _IOWR('d', 0xA1, struct drm_mode_crtc)
 SYS_PIDFD_GETFD = 438  # x86_64
 
 
-def first_crtc(fd):
-    res = bytearray(64)
-    fcntl.ioctl(fd, DRM_IOCTL_MODE_GETRESOURCES, res, True)
-    n = struct.unpack_from("<I", res, 36)[0]
-    ids = (ctypes.c_uint32 * max(n, 1))()
-    res = bytearray(struct.pack("<QQQQIIII", 0, ctypes.addressof(ids), 0, 0, 0, n, 0, 0) + bytes(16))
-    fcntl.ioctl(fd, DRM_IOCTL_MODE_GETRESOURCES, res, True)
-    return ids[0]
-
-
 def crtc_fb(fd, crtc):
-    c = bytearray(104)
-    struct.pack_into("<I", c, 12, crtc)
-    fcntl.ioctl(fd, DRM_IOCTL_MODE_GETCRTC, c, True)
-    return struct.unpack_from("<I", c, 16)[0]
+    return crtc_state(fd, crtc)[0]
 
 
 def fbs_seen(fd, crtc, want, timeout):

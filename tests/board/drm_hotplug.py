@@ -20,50 +20,22 @@ a driver's hot-plug sends (with HOTPLUG=1) on real hardware.
 
 What is on screen is read from the kernel (the CRTC's framebuffer id). Every
 wait polls against a deadline."""
-import fcntl
 import os
 import signal
 import socket
-import struct
 import subprocess
 import sys
 import tempfile
-import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
 from checks import check, run_case, wait_for  # noqa: E402
+from drm_query import crtc_state, first_crtc  # noqa: E402
 
 CANDELA = sys.argv[1]
 CARD = "/dev/dri/card0"
 STATUS = "/sys/class/drm/card0-Virtual-1/status"
 UEVENT = "/sys/class/drm/card0/uevent"
 WORK = tempfile.mkdtemp(prefix="candela-drm-hotplug-")
-
-DRM_IOCTL_MODE_GETRESOURCES = 0xC04064A0
-DRM_IOCTL_MODE_GETCRTC = 0xC06864A1
-
-
-def first_crtc(fd):
-    import ctypes
-    res = bytearray(64)
-    fcntl.ioctl(fd, DRM_IOCTL_MODE_GETRESOURCES, res, True)
-    n = struct.unpack_from("<I", res, 36)[0]
-    ids = (ctypes.c_uint32 * max(n, 1))()
-    res = bytearray(struct.pack("<QQQQIIII", 0, ctypes.addressof(ids), 0, 0, 0, n, 0, 0) + bytes(16))
-    fcntl.ioctl(fd, DRM_IOCTL_MODE_GETRESOURCES, res, True)
-    return ids[0]
-
-
-def crtc_state(fd, crtc):
-    """(framebuffer id, mode width, mode height) of the CRTC."""
-    c = bytearray(104)
-    struct.pack_into("<I", c, 12, crtc)
-    fcntl.ioctl(fd, DRM_IOCTL_MODE_GETCRTC, c, True)
-    fb = struct.unpack_from("<I", c, 16)[0]
-    hdisplay = struct.unpack_from("<H", c, 36 + 4)[0]  # drm_mode_modeinfo.hdisplay
-    vdisplay = struct.unpack_from("<H", c, 36 + 14)[0]
-    return fb, hdisplay, vdisplay
-
 
 def connector(state):
     with open(STATUS, "w") as f:
