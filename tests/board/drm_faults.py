@@ -23,7 +23,6 @@ import ctypes
 import fcntl
 import os
 import signal
-import subprocess
 import sys
 import tempfile
 import time
@@ -31,7 +30,7 @@ import time
 # check(), wait_for() and FAILED: tests/support/checks.py
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
 from checks import FAILED, check, wait_for  # noqa: E402
-from drm_query import crtc_state, first_crtc  # noqa: E402
+from drm_query import crtc_state, first_crtc, start_candela_on_drm  # noqa: E402
 
 CANDELA = sys.argv[1]
 CARD = "/dev/dri/card0"
@@ -97,13 +96,7 @@ def take_master_from(pid):
 def run(legacy):
     print("=== %s" % ("legacy modesetting" if legacy else "atomic modesetting"), flush=True)
     log_path = os.path.join(WORK, "candela-%s.log" % ("legacy" if legacy else "atomic"))
-    groups = "video,render" if subprocess.run(["getent", "group", "render"],
-                                              capture_output=True).returncode == 0 else "video"
-    env = dict(os.environ, HOME="/tmp", XDG_CACHE_HOME="/tmp", CANDELA_DRM_LEGACY="1" if legacy else "0")
-    with open(log_path, "w") as log:
-        proc = subprocess.Popen(["setpriv", "--reuid=65534", "--regid=65534", "--groups=" + groups,
-                                 "--inh-caps=-all", CANDELA, "--display", "drm", "--test-pattern",
-                                 "--size", "640x480"], stdout=log, stderr=subprocess.STDOUT, env=env)
+    proc = start_candela_on_drm(CANDELA, log_path, dict(CANDELA_DRM_LEGACY="1" if legacy else "0"))
 
     def log_text():
         return open(log_path).read()

@@ -23,13 +23,12 @@ wait polls against a deadline."""
 import os
 import signal
 import socket
-import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
 from checks import check, run_case, wait_for  # noqa: E402
-from drm_query import crtc_state, first_crtc  # noqa: E402
+from drm_query import crtc_state, first_crtc, start_candela_on_drm  # noqa: E402
 
 CANDELA = sys.argv[1]
 CARD = "/dev/dri/card0"
@@ -66,14 +65,8 @@ def case_hotplug():
         return [m for m in messages if pred(m)]
 
     log_path = os.path.join(WORK, "candela.log")
-    groups = "video,render" if subprocess.run(["getent", "group", "render"],
-                                              capture_output=True).returncode == 0 else "video"
-    env = dict(os.environ, HOME="/tmp", XDG_CACHE_HOME="/tmp", NOTIFY_SOCKET=sock_path,
-               WATCHDOG_USEC="400000")
-    with open(log_path, "w") as log:
-        proc = subprocess.Popen(["setpriv", "--reuid=65534", "--regid=65534", "--groups=" + groups,
-                                 "--inh-caps=-all", CANDELA, "--display", "drm", "--test-pattern",
-                                 "--size", "640x480"], stdout=log, stderr=subprocess.STDOUT, env=env)
+    proc = start_candela_on_drm(CANDELA, log_path,
+                                dict(NOTIFY_SOCKET=sock_path, WATCHDOG_USEC="400000"))
 
     def log_text():
         return open(log_path).read()

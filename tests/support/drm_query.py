@@ -29,3 +29,18 @@ def crtc_state(fd, crtc):
     hdisplay = struct.unpack_from("<H", c, 36 + 4)[0]  # drm_mode_modeinfo.hdisplay
     vdisplay = struct.unpack_from("<H", c, 36 + 14)[0]
     return fb, hdisplay, vdisplay
+
+
+def start_candela_on_drm(candela, log_path, extra_env, args=("--test-pattern", "--size", "640x480")):
+    """candela on the DRM display as a kiosk runs it: an unprivileged user in
+    the video (and render, where it exists) group, no capabilities; output to
+    log_path. Returns the process."""
+    import os
+    import subprocess
+    groups = "video,render" if subprocess.run(["getent", "group", "render"],
+                                              capture_output=True).returncode == 0 else "video"
+    env = dict(os.environ, HOME="/tmp", XDG_CACHE_HOME="/tmp", **extra_env)
+    with open(log_path, "w") as log:
+        return subprocess.Popen(["setpriv", "--reuid=65534", "--regid=65534", "--groups=" + groups,
+                                 "--inh-caps=-all", candela, "--display", "drm", *args],
+                                stdout=log, stderr=subprocess.STDOUT, env=env)
