@@ -9,12 +9,12 @@
 
 #include "core/random.h"
 #include "display/display.h"
+#include "elements/perlinfire/noise_reference.h"
 #include "elements/perlinfire/noise_tables.h"
 #include "elements/perlinfire/perlinfire.h"
 #include "embedded_shaders.h"
 #include "gl/program.h"
 #include "gl/texture.h"
-#include "elements/perlinfire/noise_reference.h"
 
 namespace candela {
 namespace {
