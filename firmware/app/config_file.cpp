@@ -19,6 +19,9 @@ KioskConfig load_config_file(const std::string& path) {
   const bool has_mqtt = r.has("mqtt");
   ParamReader mqtt = r.table("mqtt");
   c.mqtt = parse_mqtt(mqtt, has_mqtt);
+  const bool has_room = r.has("room");
+  ParamReader room = r.table("room");
+  c.mqtt.room = parse_room(room, has_room, has_mqtt);
   const bool has_schedule = r.has("schedule");
   ParamReader schedule = r.table("schedule");
   c.schedule = parse_schedule(schedule, has_schedule, path);

@@ -6,6 +6,8 @@
 //   display = "drm"                                    # auto | drm | window | headless
 //   [mqtt]                                             # optional: home automation
 //   host = "192.168.1.10"                              # (input/mqtt_bridge.h, README "MQTT")
+//   [room]                                             # optional: several screens, one room
+//   position = [1.5, 0]                                # (input/room.h, README "Several screens")
 //   [schedule]                                         # optional: app/schedule.h
 #pragma once
 
@@ -19,7 +21,7 @@ namespace candela {
 struct KioskConfig {
   std::string scene;    // empty: the built-in default scene
   std::string display;  // empty: not given (the command line's, or auto)
-  MqttSettings mqtt;    // enabled when the file has an [mqtt] table
+  MqttSettings mqtt;    // enabled when the file has an [mqtt] table; .room: [room]
   Schedule schedule;    // [schedule] (app/schedule.h): on/off times, fades, night, scenes
 };
 

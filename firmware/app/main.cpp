@@ -209,6 +209,11 @@ int main(int argc, char** argv) {
     InputHub inputs(desc.inputs, desc.wind, opt.control);
     inputs.set_volume(desc.sound.volume);
     inputs.set_kiosk(&kiosk);
+    // Several screens, one room: only with [room] (and [mqtt]).
+    if (opt.mqtt.enabled && opt.mqtt.room.enabled)
+      inputs.enable_room(opt.mqtt.room.x, opt.mqtt.room.z);
+    else
+      opt.mqtt.room.enabled = false;
     inputs.start();
     // Off unless the config has [mqtt]: nothing connects or listens then.
     std::unique_ptr<MqttBridge> mqtt;

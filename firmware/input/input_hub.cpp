@@ -18,6 +18,7 @@
 #include "input/gpio_source.h"
 #include "input/key_input.h"
 #include "input/kiosk_control.h"
+#include "input/room.h"
 
 namespace candela {
 
@@ -116,6 +117,12 @@ void InputHub::drain(WindField& wind) {
       if (latency > max_latency_ns_.load(std::memory_order_relaxed))
         max_latency_ns_.store(latency, std::memory_order_relaxed);
     }
+    // Started here: the room hears of it (a gust from the room is not
+    // passed on again: drain_room() applies those).
+    if (room_ && ev.wind.type != WindEvent::Type::kSteady) {
+      const int64_t t = realtime_ns();
+      if (room_out_.push({ev.wind, t})) room_sent_ns_.store(t, std::memory_order_relaxed);
+    }
     if (ev.source < specs_.size())
       applied_by_source_[ev.source].fetch_add(1, std::memory_order_relaxed);
     else if (ev.source == kControlSource)
@@ -126,6 +133,52 @@ void InputHub::drain(WindField& wind) {
   while (input_queue_.pop(e)) apply(e);
   while (camera_queue_.pop(e)) apply(e);
   while (mqtt_queue_.pop(e)) apply(e);
+  if (room_) drain_room(wind);
+}
+
+void InputHub::enable_room(double x, double z) {
+  room_ = true;
+  room_x_ = x;
+  room_z_ = z;
+}
+
+bool InputHub::give_room_gust(const RoomIn& in) {
+  if (room_in_.push(in)) return true;
+  room_overflow_.fetch_add(1, std::memory_order_relaxed);
+  return false;
+}
+
+void InputHub::drain_room(WindField& wind) {
+  RoomIn in;
+  while (room_in_.pop(in)) {
+    if (room_pending_n_ < kRoomPending)
+      room_pending_[static_cast<size_t>(room_pending_n_++)] = in;
+    else
+      room_overflow_.fetch_add(1, std::memory_order_relaxed);
+  }
+  const int64_t now = monotonic_ns();
+  // Started on the frame nearest its time: up to half a frame early, so
+  // the error is within +-half a frame, not 0..1 frame late.
+  const int64_t half_frame =
+      room_last_drain_ns_ > 0 ? std::clamp<int64_t>((now - room_last_drain_ns_) / 2, 0, 10'000'000)
+                              : 0;
+  room_last_drain_ns_ = now;
+  for (int i = 0; i < room_pending_n_;) {
+    const RoomIn& g = room_pending_[static_cast<size_t>(i)];
+    if (g.due_mono_ns - half_frame > now) {
+      ++i;
+      continue;
+    }
+    wind.push(g.wind);
+    room_origin_ns_.store(g.origin_ns, std::memory_order_relaxed);
+    room_received_ns_.store(g.received_ns, std::memory_order_relaxed);
+    room_due_ns_.store(g.due_ns, std::memory_order_relaxed);
+    room_applied_ns_.store(realtime_ns(), std::memory_order_relaxed);
+    room_applied_.fetch_add(1, std::memory_order_release);
+    applied_.fetch_add(1, std::memory_order_release);
+    room_pending_[static_cast<size_t>(i)] = room_pending_[static_cast<size_t>(--room_pending_n_)];
+  }
+  room_waiting_.store(room_pending_n_, std::memory_order_relaxed);
 }
 
 void InputHub::publish(uint64_t step, uint64_t frame, WindSample wind, int candles_lit) {
@@ -213,6 +266,32 @@ std::string InputHub::state_json() const {
     inputs.push_back(std::move(in));
   }
   j["inputs"] = std::move(inputs);
+  if (room_) {
+    // The room (input/room.h): the last received gust's times are
+    // CLOCK_REALTIME ns: when it left its origin, when its message came in
+    // here, when it was due here (origin + the plane-S delay for this
+    // position), when it was started here.
+    auto count = [&](RoomNote n) {
+      return room_counts_[static_cast<int>(n)].load(std::memory_order_relaxed);
+    };
+    Json room;
+    room["position"] = {room_x_, room_z_};
+    room["sent"] = count(RoomNote::kSent);
+    room["received"] = count(RoomNote::kReceived);
+    room["applied"] = room_applied_.load(std::memory_order_acquire);
+    room["waiting"] = room_waiting_.load(std::memory_order_relaxed);
+    room["late"] = count(RoomNote::kLate);
+    room["own"] = count(RoomNote::kOwn);
+    room["upwind"] = count(RoomNote::kUpwind);
+    room["invalid"] = count(RoomNote::kInvalid);
+    room["dropped"] = room_overflow_.load(std::memory_order_relaxed) + room_out_.dropped();
+    room["last_sent_ns"] = room_sent_ns_.load(std::memory_order_relaxed);
+    room["last"] = {{"origin_ns", room_origin_ns_.load(std::memory_order_relaxed)},
+                    {"received_ns", room_received_ns_.load(std::memory_order_relaxed)},
+                    {"due_ns", room_due_ns_.load(std::memory_order_relaxed)},
+                    {"applied_ns", room_applied_ns_.load(std::memory_order_relaxed)}};
+    j["room"] = std::move(room);
+  }
   return j.dump(-1, ' ', false, Json::error_handler_t::replace);
 }
 

@@ -7,6 +7,7 @@
 // or allocates on the frame loop's side.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <memory>
 #include <string>
@@ -74,6 +75,33 @@ class InputHub {
 
   uint64_t events_applied() const { return applied_.load(std::memory_order_relaxed); }
 
+  // Several screens, one room (input/room.h): this display stands at (x, z)
+  // m. Set before start(); without it nothing goes to or comes from the room.
+  void enable_room(double x, double z);
+  bool room_enabled() const { return room_; }
+  const WindSpec& wind_spec() const { return wind_spec_; }
+  // A gust started here (any input but the room), for the MQTT thread to
+  // publish: t_ns is CLOCK_REALTIME when it entered this wind field.
+  struct RoomOut {
+    WindEvent wind;
+    int64_t t_ns = 0;
+  };
+  // A gust from another display, already attenuated, to start in this wind
+  // field at due_mono_ns (CLOCK_MONOTONIC, the frame loop's clock).
+  struct RoomIn {
+    WindEvent wind;
+    int64_t due_mono_ns = 0;
+    // CLOCK_REALTIME: left the origin, received here, due here.
+    int64_t origin_ns = 0, received_ns = 0, due_ns = 0;
+  };
+  // MQTT thread only.
+  bool take_room_gust(RoomOut& out) { return room_out_.pop(out); }
+  bool give_room_gust(const RoomIn& in);
+  enum class RoomNote { kSent, kReceived, kLate, kOwn, kInvalid, kUpwind };
+  void room_note(RoomNote n) {
+    room_counts_[static_cast<int>(n)].fetch_add(1, std::memory_order_relaxed);
+  }
+
  private:
   class QueueSink;
   void input_thread();
@@ -102,6 +130,23 @@ class InputHub {
   std::unique_ptr<std::atomic<uint64_t>[]> applied_by_source_;
   std::atomic<uint64_t> applied_control_{0};
   std::atomic<float> volume_{0.6f};
+
+  // The room: queues each way, the received gusts waiting for their time
+  // (frame loop only), what `state` reports.
+  void drain_room(WindField& wind);
+  bool room_ = false;
+  double room_x_ = 0, room_z_ = 0;
+  SpscQueue<RoomOut, 64> room_out_;  // producer: the frame loop
+  SpscQueue<RoomIn, 64> room_in_;    // producer: the MQTT client thread
+  static constexpr int kRoomPending = 32;
+  std::array<RoomIn, kRoomPending> room_pending_{};
+  int room_pending_n_ = 0;
+  int64_t room_last_drain_ns_ = 0;
+  std::array<std::atomic<uint64_t>, 6> room_counts_{};
+  std::atomic<uint64_t> room_applied_{0}, room_overflow_{0};
+  std::atomic<int64_t> room_sent_ns_{0}, room_origin_ns_{0}, room_received_ns_{0}, room_due_ns_{0},
+      room_applied_ns_{0};
+  std::atomic<int> room_waiting_{0};
   KioskControl* kiosk_ = nullptr;
 };
 

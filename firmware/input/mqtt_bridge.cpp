@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "core/error.h"
 #include "core/file_read.h"
@@ -26,20 +28,6 @@ bool topic_level_char(char c) {
          c == '-';
 }
 
-// "a/b-c/d_e": 1..128 characters, levels of [A-Za-z0-9_-], none empty
-// (no wildcards, no leading or trailing '/').
-bool valid_topic_prefix(const std::string& p) {
-  if (p.empty() || p.size() > 128 || p.front() == '/' || p.back() == '/') return false;
-  for (size_t i = 0; i < p.size(); ++i) {
-    if (p[i] == '/') {
-      if (p[i + 1] == '/') return false;
-    } else if (!topic_level_char(p[i])) {
-      return false;
-    }
-  }
-  return true;
-}
-
 bool printable_word(const std::string& s, size_t max) {
   if (s.empty() || s.size() > max) return false;
   for (char c : s)
@@ -50,6 +38,20 @@ bool printable_word(const std::string& s, size_t max) {
 std::once_flag g_lib_once;
 
 }  // namespace
+
+// "a/b-c/d_e": 1..128 characters, levels of [A-Za-z0-9_-], none empty
+// (no wildcards, no leading or trailing '/').
+bool mqtt_valid_topic_prefix(const std::string& p) {
+  if (p.empty() || p.size() > 128 || p.front() == '/' || p.back() == '/') return false;
+  for (size_t i = 0; i < p.size(); ++i) {
+    if (p[i] == '/') {
+      if (p[i + 1] == '/') return false;
+    } else if (!topic_level_char(p[i])) {
+      return false;
+    }
+  }
+  return true;
+}
 
 std::string mqtt_node_id(const std::string& prefix) {
   std::string id = prefix;
@@ -86,7 +88,7 @@ MqttSettings parse_mqtt(ParamReader& r, bool present) {
     r.fail(s.cert_file.empty() ? "key_file" : "cert_file",
            "expected cert_file and key_file together (a client certificate and its key)");
   s.prefix = r.string("prefix", s.prefix);
-  if (!valid_topic_prefix(s.prefix))
+  if (!mqtt_valid_topic_prefix(s.prefix))
     r.fail("prefix",
            "expected a topic prefix of 1..128 characters: levels of letters, digits, '_' and "
            "'-' joined by '/' (no wildcards, no empty level), got \"" +
@@ -127,7 +129,7 @@ MqttSettings parse_mqtt(ParamReader& r, bool present) {
   s.reconnect_max_s = static_cast<int>(r.integer("reconnect_max", s.reconnect_max_s, 1, 300));
   s.discovery = r.boolean("discovery", s.discovery);
   s.discovery_prefix = r.string("discovery_prefix", s.discovery_prefix);
-  if (!valid_topic_prefix(s.discovery_prefix))
+  if (!mqtt_valid_topic_prefix(s.discovery_prefix))
     r.fail("discovery_prefix",
            "expected a topic prefix (levels of letters, digits, '_' and '-' joined by '/'), got "
            "\"" +
@@ -313,6 +315,10 @@ void MqttBridge::on_connect(int rc) {
   reported_ = false;
   const std::string sub = s_.prefix + "/set/+";
   mosquitto_subscribe(mosq_, nullptr, sub.c_str(), 1);
+  if (s_.room.enabled) {
+    const std::string room = s_.room.topic + "/gust";
+    mosquitto_subscribe(mosq_, nullptr, room.c_str(), 0);
+  }
   publish(s_.prefix + "/availability", "online", true);
   if (s_.discovery) {
     const std::string node = mqtt_node_id(s_.prefix);
@@ -342,6 +348,12 @@ bool MqttBridge::is_momentary(std::string_view verb) {
 }
 
 void MqttBridge::on_message(const mosquitto_message* m) {
+  if (s_.room.enabled && m->topic && s_.room.topic.size() + 5 == std::strlen(m->topic) &&
+      std::strncmp(m->topic, s_.room.topic.c_str(), s_.room.topic.size()) == 0 &&
+      std::strcmp(m->topic + s_.room.topic.size(), "/gust") == 0) {
+    on_room_message(m);
+    return;
+  }
   const std::string set = s_.prefix + "/set/";
   if (!m->topic || std::strncmp(m->topic, set.c_str(), set.size()) != 0) return;
   const std::string verb = m->topic + set.size();
@@ -372,6 +384,111 @@ void MqttBridge::on_message(const mosquitto_message* m) {
   commands_.fetch_add(1, std::memory_order_relaxed);
   publish(s_.prefix + "/reply", reply, false, 0);
   publish_state(true);
+}
+
+void MqttBridge::on_room_message(const mosquitto_message* m) {
+  const std::string_view payload(static_cast<const char*>(m->payload),
+                                 m->payloadlen > 0 ? static_cast<size_t>(m->payloadlen) : 0);
+  std::string error;
+  const std::optional<RoomGust> g = parse_room_gust(payload, &error);
+  const int64_t mono = monotonic_ns();
+  if (!g) {
+    // Logged, dropped; at most one line per 10 s (a broken sender cannot
+    // flood the log).
+    hub_.room_note(InputHub::RoomNote::kInvalid);
+    if (room_invalid_logged_ == 0 || mono - room_invalid_logged_ >= 10'000'000'000) {
+      LOG_WARN("mqtt: room: dropped a message on %s: %s%s", m->topic, error.c_str(),
+               room_invalid_quiet_ ? " (and others since, not logged)" : "");
+      room_invalid_logged_ = mono;
+      room_invalid_quiet_ = 0;
+    } else {
+      ++room_invalid_quiet_;
+    }
+    return;
+  }
+  if (g->origin == s_.client_id) {  // our own, back from the broker
+    hub_.room_note(InputHub::RoomNote::kOwn);
+    return;
+  }
+  hub_.room_note(InputHub::RoomNote::kReceived);
+  const WindSpec& wind = hub_.wind_spec();
+  const WindTravel t = room_travel(wind, *g, s_.room.x, s_.room.z);
+  if (!t.reached) {
+    hub_.room_note(InputHub::RoomNote::kUpwind);
+    LOG_DEBUG("room: gust %s#%llu from [%g, %g] blows away from here [%g, %g]; not reached",
+              g->origin.c_str(), static_cast<unsigned long long>(g->seq), g->px, g->pz, s_.room.x,
+              s_.room.z);
+    return;
+  }
+  const auto delay_ns = static_cast<int64_t>(std::llround(t.delay.to_double() * 1e9));
+  const int64_t due_ns = g->t_ns + delay_ns;
+  const int64_t received_ns = realtime_ns();
+  int64_t lead = due_ns - received_ns;
+  if (lead > 120'000'000'000) {
+    hub_.room_note(InputHub::RoomNote::kInvalid);
+    LOG_WARN("mqtt: room: dropped gust %s#%llu due %.1f s from now (clocks apart? run NTP)",
+             g->origin.c_str(), static_cast<unsigned long long>(g->seq),
+             static_cast<double>(lead) / 1e9);
+    return;
+  }
+  if (lead < 0) {
+    hub_.room_note(InputHub::RoomNote::kLate);
+    // Older than a whole gust: stale (a backlog after a reconnect).
+    if (-lead > static_cast<int64_t>(wind.gust_seconds.to_double() * 1e9)) {
+      LOG_DEBUG("room: gust %s#%llu came %.1f ms after its time, longer than a gust; dropped",
+                g->origin.c_str(), static_cast<unsigned long long>(g->seq),
+                static_cast<double>(-lead) / 1e6);
+      return;
+    }
+    LOG_DEBUG(
+        "room: gust %s#%llu came %.1f ms after its time (broker round trip); started at "
+        "once",
+        g->origin.c_str(), static_cast<unsigned long long>(g->seq),
+        static_cast<double>(-lead) / 1e6);
+    lead = 0;
+  }
+  InputHub::RoomIn in;
+  in.wind.type = g->type;
+  in.wind.x = Fixed::from_double(g->x) * t.gain;
+  in.wind.z = Fixed::from_double(g->z) * t.gain;
+  in.due_mono_ns = mono + lead;
+  in.origin_ns = g->t_ns;
+  in.received_ns = received_ns;
+  in.due_ns = due_ns;
+  if (!hub_.give_room_gust(in)) {
+    LOG_WARN("mqtt: room: the frame loop's room queue is full; gust %s#%llu dropped",
+             g->origin.c_str(), static_cast<unsigned long long>(g->seq));
+    return;
+  }
+  LOG_INFO(
+      "room: gust %s#%llu from [%g, %g], %.2f m upwind of here: due at +%.1f ms (in %.1f ms), "
+      "strength x%.3f",
+      g->origin.c_str(), static_cast<unsigned long long>(g->seq), g->px, g->pz,
+      t.distance.to_double(), static_cast<double>(delay_ns) / 1e6, static_cast<double>(lead) / 1e6,
+      t.gain.to_double());
+}
+
+void MqttBridge::publish_room() {
+  InputHub::RoomOut out;
+  while (hub_.take_room_gust(out)) {
+    // Not connected, or stuck long enough that it would come stale: dropped.
+    if (!connected_ || realtime_ns() - out.t_ns > 2'000'000'000) {
+      LOG_DEBUG("room: a gust started here was not published (%s)",
+                connected_ ? "too old" : "not connected");
+      continue;
+    }
+    RoomGust g;
+    g.origin = s_.client_id;
+    g.seq = ++room_seq_;
+    g.t_ns = out.t_ns;
+    g.type = out.wind.type;
+    g.x = out.wind.x.to_double();
+    g.z = out.wind.z.to_double();
+    g.px = s_.room.x;
+    g.pz = s_.room.z;
+    publish(s_.room.topic + "/gust", room_gust_json(g), false, 0);
+    hub_.room_note(InputHub::RoomNote::kSent);
+  }
 }
 
 std::string MqttBridge::failure(int rc) const {
@@ -405,7 +522,9 @@ void MqttBridge::run() {
       socket_up = true;
       connecting_since = monotonic_ns();
     }
-    int rc = mosquitto_loop(mosq_, 100, 1);
+    // With a room, a gust started here waits at most 5 ms to be published.
+    int rc = mosquitto_loop(mosq_, s_.room.enabled ? 5 : 100, 1);
+    if (s_.room.enabled) publish_room();
     // Something on the port that never answers like a broker: give up on
     // it after the keepalive, as libmosquitto would on a silent broker.
     if (rc == MOSQ_ERR_SUCCESS && !connected_ && !refused_ &&

@@ -37,6 +37,8 @@
 #include <thread>
 #include <vector>
 
+#include "input/room.h"
+
 struct mosquitto;
 struct mosquitto_message;
 
@@ -66,6 +68,11 @@ struct MqttSettings {
   // The scene select's options: the built-in scenes' names (set by the
   // runtime; empty: no scene select).
   std::vector<std::string> scenes;
+  // Several screens, one room (input/room.h): the config's [room].
+  //   ROOM_TOPIC/gust      JSON (RoomGust): every gust started here, QoS 0,
+  //                        not retained; those of the other displays are
+  //                        received, scheduled and handed to the frame loop
+  RoomSettings room;
 };
 
 // Reads [mqtt] (password_file resolved against the config's folder, read
@@ -73,6 +80,10 @@ struct MqttSettings {
 // Calls reader.finish(). Throws ConfigError naming file, key and what was
 // expected.
 MqttSettings parse_mqtt(ParamReader& reader, bool present);
+
+// "a/b-c/d_e": 1..128 characters, levels of [A-Za-z0-9_-], none empty (no
+// wildcards, no leading or trailing '/').
+bool mqtt_valid_topic_prefix(const std::string& prefix);
 
 // Home Assistant's discovery node id for a prefix: '/' -> '_'.
 std::string mqtt_node_id(const std::string& prefix);
@@ -98,6 +109,8 @@ class MqttBridge {
   void on_connect(int rc);
   void on_disconnect(int rc);
   void on_message(const mosquitto_message* m);
+  void on_room_message(const mosquitto_message* m);
+  void publish_room();  // the gusts started here since the last call
   // An event, not a setting: gust, blowout, reload (refused when retained).
   static bool is_momentary(std::string_view verb);
   void publish(const std::string& topic, const std::string& payload, bool retain, int qos = 1);
@@ -121,6 +134,9 @@ class MqttBridge {
   bool refused_ = false;    // the last CONNACK refused (client thread only)
   std::string last_state_;  // client thread only
   std::atomic<uint64_t> connects_{0}, commands_{0};
+  uint64_t room_seq_ = 0;            // client thread only
+  int64_t room_invalid_logged_ = 0;  // when a bad room message was last logged
+  uint64_t room_invalid_quiet_ = 0;  // bad ones since, not logged
 };
 
 }  // namespace candela

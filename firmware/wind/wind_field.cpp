@@ -136,8 +136,23 @@ Fixed WindField::distance_from_plane(WindPosition p, Fixed dx, Fixed dz) const {
   return d.raw < 0 ? Fixed{} : d;
 }
 
-Fixed WindField::attenuate(Fixed distance) const {
-  return Fixed::from_int(1) / (Fixed::from_int(1) + spec_.attenuation * distance);
+Fixed WindField::attenuation_at(const WindSpec& spec, Fixed distance) {
+  return Fixed::from_int(1) / (Fixed::from_int(1) + spec.attenuation * distance);
+}
+
+WindTravel WindField::travel(const WindSpec& spec, WindPosition from, WindPosition to, Fixed x,
+                             Fixed z) {
+  WindTravel t;
+  const Fixed peak = fixed_hypot(x, z);
+  if (peak.raw <= 0) return t;
+  t.distance = (to.x - from.x) * (x / peak) + (to.z - from.z) * (z / peak);
+  if (t.distance.raw < 0) return t;
+  t.reached = true;
+  // As sample() does within one screen: d / travel_speed, 1 / (1 + a d).
+  t.delay = t.distance * (Fixed::from_int(1) / spec.travel_speed);
+  t.gain = attenuation_at(spec, spec.plane_distance + t.distance) /
+           attenuation_at(spec, spec.plane_distance);
+  return t;
 }
 
 Fixed WindField::delay_seconds(WindPosition p, Fixed dx, Fixed dz) const {

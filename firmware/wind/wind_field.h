@@ -57,6 +57,21 @@ struct WindPosition {
   static WindPosition from(Vec3 p) { return {Fixed::from_double(p.x), Fixed::from_double(p.z)}; }
 };
 
+// How a gust that left a display's plane S travels to another display of the
+// same room (issue 18, input/room.h): the candle paper's plane S, with the
+// room as the scene. `distance` is how far downwind of the origin the other
+// display stands (along the gust); it is reached after distance /
+// travel_speed, weakened by the field's 1 / (1 + attenuation d) taken from
+// plane S: attenuate(plane_distance + distance) / attenuate(plane_distance),
+// so each display's own candles then add their own part as in one screen.
+// A display upwind of the origin (distance < 0) is not reached.
+struct WindTravel {
+  bool reached = false;
+  Fixed distance;  // m, along the gust
+  Fixed delay;     // s
+  Fixed gain;      // 0..1, applied to the gust's strength
+};
+
 struct WindEvent {
   enum class Type : uint8_t { kGust, kSteady, kBlowOut } type = Type::kGust;
   Fixed x, z;  // direction * strength (m/s)
@@ -78,6 +93,10 @@ class WindField {
   // the unit vector (dx, dz).
   Fixed delay_seconds(WindPosition position, Fixed dx, Fixed dz) const;
   int active_gusts() const;
+  // A gust (x, z: direction * strength) from a display at `from` to one at
+  // `to`, both in metres on the room's ground plane (WindTravel above).
+  static WindTravel travel(const WindSpec& spec, WindPosition from, WindPosition to, Fixed x,
+                           Fixed z);
   uint64_t steps() const { return now_; }
 
  private:
@@ -90,7 +109,8 @@ class WindField {
   };
   void start_gust(Fixed x, Fixed z, Fixed length_seconds);
   Fixed distance_from_plane(WindPosition p, Fixed dx, Fixed dz) const;
-  Fixed attenuate(Fixed distance) const;
+  Fixed attenuate(Fixed distance) const { return attenuation_at(spec_, distance); }
+  static Fixed attenuation_at(const WindSpec& spec, Fixed distance);
 
   WindSpec spec_;
   NoiseTable gust_table_;

@@ -160,6 +160,34 @@ TEST(EigenReconstruction, CachedFramesMatchTheFullSum) {
   }
 }
 
+// A fireplace plays one model in several flames: its images go to the GPU,
+// and its frames into the cache, once (the built-in fire's stack is 6 MB).
+TEST(EigenReconstruction, FlamesOfOneModelShareTheirReconstructor) {
+  auto display = headless(64, 64);
+  const auto m = model::FlameModel::load(default_model_path());
+  const auto m16 = sixteen_bit_copy(m);
+  EigenBatch batch;
+  const std::vector<float> w(static_cast<size_t>(m.components()), 0.0f);
+  const FlameLookSettings look;
+  const auto flame = [&](const model::FlameModel& of, StackLayout layout) {
+    return std::make_unique<EigenRenderer>(image_stack_of(of.mean), image_stack_of(of.eigen),
+                                           layout, of.components(), look, w, &batch);
+  };
+  auto a = flame(m, StackLayout::kPacked), b = flame(m, StackLayout::kPacked);
+  auto other_layout = flame(m, StackLayout::kLayered),
+       other_model = flame(m16, StackLayout::kPacked);
+  EXPECT_EQ(&a->reconstructor(), &b->reconstructor());
+  EXPECT_NE(&a->reconstructor(), &other_layout->reconstructor());
+  EXPECT_NE(&a->reconstructor(), &other_model->reconstructor());
+  // The last flame of a model gone, a new one uploads its own again.
+  const EigenReconstructor* first = &a->reconstructor();
+  a.reset();
+  EXPECT_EQ(&b->reconstructor(), first);
+  b.reset();
+  auto c = flame(m, StackLayout::kPacked);
+  EXPECT_EQ(c->reconstructor().components(), m.components());
+}
+
 // A model of footage keeps an EigenFire per frame (a 20 s clip at 25 fps:
 // 500), so that it plays back as filmed: the GPU sums every one of them,
 // not only the first 256 (the cap until a model of one's own footage came

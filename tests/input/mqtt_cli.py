@@ -24,6 +24,13 @@ paho-mqtt (Debian `python3-paho-mqtt`).
                 retried, logged once
   off           no [mqtt]: candela opens no TCP socket at all
   config        [mqtt] mistakes are refused by --check naming the key
+  room          three displays at [0,0], [1,0], [2,0] in one [room] (and one without):
+                a gust sent to the first through its control socket is published once,
+                and started by the second and third in order, each at the origin's
+                time + the plane-S delay for its position, within one frame (16.7 ms);
+                the origin ignores its own, nobody re-publishes, the one without
+                [room] hears nothing; a bad message is logged and dropped, a late one
+                is started at once
 """
 import json, os, queue, select, shutil, signal, socket, subprocess, sys, tempfile, time
 
@@ -559,8 +566,113 @@ def case_config():
     check("can be read by others" not in r.stderr, "not when it is 0600", r.stderr)
 
 
+def case_room():
+    port = free_port()
+    Broker(port)
+    client = Client(port)
+    room = PREFIX + "/room"
+    names = ["a", "b", "c", "solo"]
+    xs = {"a": 0.0, "b": 1.0, "c": 2.0}
+    ps, ctl, logs = {}, {}, {}
+    t_start = time.monotonic()
+    for n in names:
+        conf = os.path.join(WORK, n + ".toml")
+        with open(conf, "w") as f:
+            f.write('[mqtt]\nhost = "127.0.0.1"\nport = %d\nprefix = "%s/%s"\ndiscovery = false\n'
+                    % (port, PREFIX, n))
+            if n in xs:
+                f.write('[room]\nposition = [%g, 0]\ntopic = "%s"\n' % (xs[n], room))
+        ctl[n] = os.path.join(WORK, n + ".ctl")
+        logs[n] = os.path.join(WORK, n + ".log")
+        cmd = [CANDELA, "--display", "headless", "--test-pattern", "--size", "64x48", "--realtime",
+               "--log-level", "debug", "--config", conf, "--control", ctl[n]]
+        ps[n] = subprocess.Popen(cmd, stdout=open(logs[n], "w"), stderr=subprocess.STDOUT)
+        procs.append(ps[n])
+    log = lambda n: open(logs[n]).read()
+    # All four online, in whatever order they connect.
+    waiting = {"%s/%s/availability" % (PREFIX, n): n for n in names}
+    deadline = time.monotonic() + 20
+    while waiting and time.monotonic() < deadline:
+        try:
+            t, p, _ = client.q.get(timeout=max(0.01, deadline - time.monotonic()))
+        except queue.Empty:
+            break
+        if p == "online":
+            waiting.pop(t, None)
+    check(not waiting, "all four online", {n: log(n)[-500:] for n in waiting.values()})
+    state = lambda n: json.loads(ask(ctl[n], "state") or "{}")
+    check("room" not in state("solo"), "no [room]: no room in state")
+    check(ask(ctl["a"], "gust left 2") == "ok", "a gust to a through its control socket")
+    msg = client.wait(room + "/gust")
+    check(msg is not None, "a publishes it on the room topic", log("a"))
+    if msg is None:
+        return
+    g = json.loads(msg)
+    check(g["origin"] == "candela-" + (PREFIX + "/a").replace("/", "_") and g["type"] == "gust"
+          and abs(g["x"] - 2) < 1e-3 and g["z"] == 0 and g["position"] == [0, 0],
+          "the message: origin, type, strength, position", g)
+    # b and c start it when it reaches them: 1 m and 2 m downwind at the
+    # scene's 1.5 m/s.
+    applied = {}
+    deadline = time.monotonic() + 10
+    while time.monotonic() < deadline and len(applied) < 2:
+        for n in ("b", "c"):
+            if n not in applied:
+                st = state(n)
+                if st.get("room", {}).get("applied", 0) >= 1:
+                    applied[n] = st["room"]
+    check(len(applied) == 2, "b and c start the gust", {n: log(n)[-800:] for n in ("b", "c")})
+    frame_ms = 1000.0 / 60
+    for n in applied:
+        r = applied[n]["last"]
+        want = xs[n] / 1.5 * 1000
+        got = (r["applied_ns"] - g["t_ns"]) / 1e6
+        print("     %s at x=%g: due +%.1f ms after the origin, started at +%.1f ms (%+.1f ms); "
+              "the message took %.2f ms from the origin's frame through the broker"
+              % (n, xs[n], want, got, got - want, (r["received_ns"] - g["t_ns"]) / 1e6))
+        check(r["origin_ns"] == g["t_ns"], n + ": the origin's time is carried", r)
+        check(abs((r["due_ns"] - r["origin_ns"]) / 1e6 - want) < 0.5,
+              n + ": due at the origin's time + the plane-S delay", r)
+        check(abs(got - want) <= frame_ms, n + ": started within one frame of its time", got - want)
+    if len(applied) == 2:
+        check(applied["b"]["last"]["applied_ns"] < applied["c"]["last"]["applied_ns"],
+              "the draught crosses the row in order: b before c")
+    sa = state("a")["room"]
+    check(sa["sent"] == 1 and sa["last_sent_ns"] == g["t_ns"] and sa["own"] == 1
+          and sa["applied"] == 0, "a: sent once, its own echo ignored", sa)
+    for n in ("b", "c"):
+        r = state(n)["room"]
+        check(r["sent"] == 0 and r["received"] == 1 and r["late"] == 0,
+              n + ": received once, re-published nothing", r)
+    check(client.wait(room + "/gust", timeout=0.3) is None, "no other message on the room topic")
+    solo = state("solo")
+    check("room" not in solo and solo["events"] == 0, "the display without [room] heard nothing",
+          solo)
+    # A bad message: logged and dropped, the display runs on.
+    client.c.publish(room + "/gust", '{"v":1,"origin":"x"', qos=1)
+    deadline = time.monotonic() + 5
+    while time.monotonic() < deadline and state("b")["room"]["invalid"] < 1:
+        pass
+    check(state("b")["room"]["invalid"] == 1 and "room: dropped a message on %s/gust: expected JSON"
+          % room in log("b"), "bad JSON: logged and dropped", log("b")[-600:])
+    check(frames_advance(ctl["b"], 10), "b draws on")
+    # A late one (sent 1 s ago from x=0: due at b 333 ms ago): started at once.
+    late = dict(g, origin="test", seq=1, t_ns=time.time_ns() - 1_000_000_000)
+    client.c.publish(room + "/gust", json.dumps(late), qos=1)
+    deadline = time.monotonic() + 5
+    while time.monotonic() < deadline and state("b")["room"]["applied"] < 2:
+        pass
+    r = state("b")["room"]
+    check(r["late"] == 1 and r["applied"] == 2 and "came " in log("b")
+          and "after its time (broker round trip); started at once" in log("b"),
+          "a late gust: started at once, said at debug level", r)
+    print("     whole case: %.1f s" % (time.monotonic() - t_start))
+    for n in names:
+        check(stop_candela(ps[n]) == 0, n + " exits 0")
+
+
 try:
-    {"commands": case_commands, "reconnect": case_reconnect, "absent": case_absent,
+    {"room": case_room, "commands": case_commands, "reconnect": case_reconnect, "absent": case_absent,
      "password": case_password, "off": case_off, "config": case_config,
      "silent": case_silent, "retained": case_retained, "tls": case_tls}[CASE]()
 finally:

@@ -195,15 +195,19 @@ void EigenReconstructor::draw_near_frame_at(std::span<const float> weights, int 
 
 EigenRenderer::EigenRenderer(const ImageStack& mean, const ImageStack& eigen, StackLayout layout,
                              int max_components, const FlameLookSettings& look,
-                             std::span<const float> weights, EigenBatch* batch)
-    : recon_(mean, eigen, layout, max_components) {
-  const int h = recon_.height(), w = recon_.width();
+                             std::span<const float> weights, EigenBatch* batch) {
+  if (!batch) {
+    own_batch_ = std::make_unique<EigenBatch>();
+    batch = own_batch_.get();
+  }
+  recon_ = batch->reconstructor(mean, eigen, layout, max_components);
+  const int h = recon_->height(), w = recon_->width();
   ramp_ = upload_rgba8(256, 1, look.ramp.data(), true);
   glBindTexture(GL_TEXTURE_2D, ramp_.get());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   EigenSpriteJob& j = job_;
-  j.recon = &recon_;
+  j.recon = recon_.get();
   j.weights = weights;
   j.ramp = ramp_.get();
   j.brightness = look.brightness;
@@ -241,10 +245,6 @@ EigenRenderer::EigenRenderer(const ImageStack& mean, const ImageStack& eigen, St
   j.margin_y = look.glow_strength > 0 ? static_cast<float>(radius) / half_h : 0.0f;
   j.sprite_w = w + 2 * static_cast<int>(std::lround(j.margin_x * w));
   j.sprite_h = h + 2 * static_cast<int>(std::lround(j.margin_y * h));
-  if (!batch) {
-    own_batch_ = std::make_unique<EigenBatch>();
-    batch = own_batch_.get();
-  }
   batch_ = batch;
   batch_->add(&job_);
 }
@@ -255,11 +255,11 @@ void EigenRenderer::cache_frames(std::span<const float> frame_weights, int frame
   // Worth it for a long sum only: the candle model's 80 components cost 21
   // fetches a pixel, its 3600 frames 100 MB; the fire's 299, 75 fetches.
   constexpr int kCacheFromComponents = 128;
-  if (recon_.components() < kCacheFromComponents) return;
+  if (recon_->components() < kCacheFromComponents || recon_->caches()) return;
   const FramebufferRestore caller;
-  if (!recon_.enable_cache(frame_weights, frames, stride))
+  if (!recon_->enable_cache(frame_weights, frames, stride))
     LOG_INFO("eigenflame: %d frames of %dx%d not cached (over 64 MiB or the GPU's layers)", frames,
-             recon_.width(), recon_.height());
+             recon_->width(), recon_->height());
 }
 
 void EigenRenderer::prepare() { batch_->render(); }
@@ -268,7 +268,7 @@ void EigenRenderer::composite(const Mat4& view, const Mat4& view_projection,
                               const FlamePose& pose) {
   Vec3 right{view.at(0, 0), 0.0f, view.at(0, 2)};
   right = length(right) > 1e-6f ? normalize(right) : Vec3{1, 0, 0};
-  const float aspect = static_cast<float>(recon_.width()) / recon_.height();
+  const float aspect = static_cast<float>(recon_->width()) / recon_->height();
   const EigenBatch::FlameUniforms& u = batch_->flame_uniforms();
   batch_->flame_program().use();
   glUniformMatrix4fv(u.vp, 1, GL_FALSE, view_projection.m);
@@ -356,6 +356,21 @@ EigenBatch::EigenBatch() {
   glVertexAttribPointer(static_cast<GLuint>(loc), 2, GL_FLOAT, GL_FALSE, 0, nullptr);
   glBindVertexArray(0);
   fullscreen_vao_ = make_vertex_array();
+}
+
+std::shared_ptr<EigenReconstructor> EigenBatch::reconstructor(const ImageStack& mean,
+                                                              const ImageStack& eigen,
+                                                              StackLayout layout,
+                                                              int max_components) {
+  std::erase_if(reconstructors_,
+                [](const SharedReconstructor& r) { return r.reconstructor.expired(); });
+  for (const SharedReconstructor& r : reconstructors_)
+    if (r.mean == mean.data && r.eigen == eigen.data && r.layout == layout &&
+        r.max_components == max_components)
+      return r.reconstructor.lock();
+  auto made = std::make_shared<EigenReconstructor>(mean, eigen, layout, max_components);
+  reconstructors_.push_back({mean.data, eigen.data, layout, max_components, made});
+  return made;
 }
 
 void EigenBatch::add(EigenSpriteJob* job) {

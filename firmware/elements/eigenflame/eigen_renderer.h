@@ -188,7 +188,7 @@ class EigenRenderer {
   void prepare();
   // Adds the flame and its glow onto the bound framebuffer.
   void composite(const Mat4& view, const Mat4& view_projection, const FlamePose& pose);
-  const EigenReconstructor& reconstructor() const { return recon_; }
+  const EigenReconstructor& reconstructor() const { return *recon_; }
   // The model's frames (rows of `stride` weights), for the frame cache
   // (EigenReconstructor::enable_cache); then set_frame names the frame the
   // weights are near, at each update.
@@ -196,7 +196,7 @@ class EigenRenderer {
   void set_frame(int32_t frame) { job_.frame = frame; }
 
  private:
-  EigenReconstructor recon_;
+  std::shared_ptr<EigenReconstructor> recon_;  // shared with the batch's other flames of its model
   Texture ramp_;
   EigenSpriteJob job_;
   std::unique_ptr<EigenBatch> own_batch_;  // when made without a shared one
@@ -210,6 +210,12 @@ class EigenBatch final : public SceneResource {
   EigenBatch();
   void add(EigenSpriteJob* job);
   void remove(EigenSpriteJob* job);
+  // The reconstructor of these images: one per model (and layout and
+  // component count) however many of the scene's flames play it, so its
+  // stack, and its frame cache, are uploaded and filled once. The images
+  // must outlive every renderer holding it (the flames hold their model).
+  std::shared_ptr<EigenReconstructor> reconstructor(const ImageStack& mean, const ImageStack& eigen,
+                                                    StackLayout layout, int max_components);
   // Every member's reconstruction, glow and sprite into the atlases, for
   // the members whose weights changed since they were last drawn. Restores
   // the caller's framebuffer and viewport.
@@ -228,6 +234,13 @@ class EigenBatch final : public SceneResource {
  private:
   void layout();
   std::vector<EigenSpriteJob*> members_;
+  struct SharedReconstructor {
+    const uint8_t *mean, *eigen;
+    StackLayout layout;
+    int max_components;
+    std::weak_ptr<EigenReconstructor> reconstructor;
+  };
+  std::vector<SharedReconstructor> reconstructors_;
   bool laid_out_ = false;
   RenderTarget gray_, glow_a_, glow_b_, sprite_;
   Program glow_, sprite_program_, flame_;
