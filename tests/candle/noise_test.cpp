@@ -1,14 +1,14 @@
 // Noise tables: the synthesis (tools/noise) and the runtime reader
-// (core/noise_table): spectra, wrap, gust shape, determinism, validation.
+// (model/noise_table): spectra, wrap, gust shape, determinism, validation.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
 #include "core/error.h"
-#include "core/noise_table.h"
 #include "embedded_noise_tables.h"
 #include "model/model_writer.h"
+#include "model/noise_table.h"
 #include "noise/noise_synth.h"
 
 namespace candela {

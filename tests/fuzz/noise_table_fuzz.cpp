@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/noise_table.h"
 #include "model/model_file.h"
+#include "model/noise_table.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "core/noise_table.h"
+#include "model/noise_table.h"
 
 #include <cstring>
 #include <nlohmann/json.hpp>
