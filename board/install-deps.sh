@@ -18,6 +18,7 @@ runtime=(
   libasound2  # sound (ALSA)
   libmosquitto1  # MQTT ([mqtt] in the kiosk config)
   libcec6  # HDMI-CEC screen power (dlopened: without it, DPMS only)
+  libudev1  # monitor hot-plug (udev uevents)
   libcamera-ipa  # pulls in the libcamera library of the release (0.0.3 on bookworm)
 )
 build=(
@@ -27,6 +28,7 @@ build=(
   libeigen3-dev libgpiod-dev gpiod
   libasound2-dev
   libmosquitto-dev
+  libudev-dev  # the DRM display follows monitor hot-plug (display/drm_display.cpp)
   libcec-dev  # its headers only (display/cec_switch.cpp dlopens libcec6)
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev
   libgtest-dev libgmock-dev libbenchmark-dev
@@ -65,8 +67,8 @@ arm64=(
   pkgconf:arm64 libegl-dev:arm64 libgles-dev:arm64 libegl-mesa0:arm64 libgl1-mesa-dri:arm64
   libdrm-dev:arm64 libgbm-dev:arm64 libpng-dev:arm64 libx11-dev:arm64 zlib1g-dev:arm64
   libtomlplusplus-dev:arm64 libgpiod-dev:arm64 libasound2-dev:arm64 libmosquitto-dev:arm64
-  libcamera-dev:arm64
-  libfftw3-dev:arm64  # tests/eigenflame's reference FFT
+  libcamera-dev:arm64 libudev-dev:arm64
+  libfftw3-dev:arm64  # tests/elements/eigenflame's reference FFT
   libgtest-dev:arm64 libgmock-dev:arm64
 )
 # Adds arm64 to dpkg's architectures (once) so the :arm64 packages can be had.

@@ -6,7 +6,7 @@
 // table texture, both built by firmware/elements/perlinfire/noise_tables.cpp.
 // The program builder puts "#version" and the PF_* constants in front of this
 // text and the shader body after it; the tests' CPU reference
-// (tests/perlinfire/noise_reference.cpp) follows the same steps.
+// (tests/elements/perlinfire/noise_reference.cpp) follows the same steps.
 precision highp float;
 precision highp int;
 precision highp usampler2D;

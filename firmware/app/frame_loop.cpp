@@ -57,6 +57,7 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
   float level = kiosk ? kiosk->target_level() : 1.0f;  // the brightness shown, gliding
   float fade_left_s = 0.0f;                            // of the cross-fade
   bool screen_on = true;
+  bool screen_present = true;  // the display has somewhere to show frames
   uint64_t fps_frames = 0;
   auto fps_since = Clock::now();
 
@@ -91,7 +92,7 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
       kiosk->scene_built(error);
       return;
     }
-    if (post && screen_on && result.frames > 0 && s.crossfade_s > 0) {
+    if (post && screen_on && display.screen_present() && result.frames > 0 && s.crossfade_s > 0) {
       display.begin_frame();
       frame.width = display.width();
       frame.height = display.height();
@@ -142,6 +143,22 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
         kiosk->wait_for_wake(250);
         continue;
       }
+    }
+    if (!display.screen_present()) {
+      // No monitor (DRM hot-plug): nothing drawn, the animation paused, the
+      // loop alive (watchdog pings) and waiting on the display's uevents.
+      if (s.inputs) s.inputs->drain(scene->wind());
+      if (s.notify) s.notify->idle(Clock::now(), "waiting for a screen");
+      if (kiosk && screen_present) kiosk->set_fps(0.0f);
+      screen_present = false;
+      display.wait_for_screen(250);
+      continue;
+    }
+    if (!screen_present) {  // a screen again: no catching up on the time without one
+      screen_present = true;
+      prev_begin = Clock::now();
+      fps_frames = 0;
+      fps_since = prev_begin;
     }
     if (s.inputs) s.inputs->drain(scene->wind());
     const auto begin = Clock::now();

@@ -95,7 +95,7 @@ void SdNotify::frame_presented(uint64_t frames, Clock::time_point now) {
                             static_cast<unsigned long long>(frames)));
   }
   if (idle_) {  // the screen back on: the rate counts from now
-    idle_ = false;
+    idle_ = nullptr;
     status_since_ = now;
     status_frames_ = frames;
   }
@@ -122,14 +122,14 @@ void SdNotify::set_scene(const std::string& scene) {
   std::snprintf(scene_, sizeof(scene_), "%s", name);
 }
 
-void SdNotify::idle(Clock::time_point now) {
+void SdNotify::idle(Clock::time_point now, const char* why) {
   if (fd_ < 0) return;
-  if (!idle_) {  // `systemctl status` says so, not the last frame rate
-    idle_ = true;
+  if (!idle_ || std::strcmp(idle_, why) != 0) {  // `systemctl status` says so, not the last rate
+    idle_ = why;
     char msg[160];
-    send(msg, std::snprintf(msg, sizeof(msg), "%sSTATUS=%s: screen off", ready_ ? "" : "READY=1\n",
-                            scene_));
-    // Started with the screen scheduled off: running is ready.
+    send(msg, std::snprintf(msg, sizeof(msg), "%sSTATUS=%s: %s", ready_ ? "" : "READY=1\n", scene_,
+                            why));
+    // Started with the screen scheduled off or no screen connected: running is ready.
     ready_ = true;
     status_since_ = now;
   }

@@ -11,8 +11,9 @@
 //              screen off" while the screen is switched off)
 //   RELOADING=1 (with MONOTONIC_USEC=) when a reload (SIGHUP, `reload`)
 //              begins, READY=1 again when it is done
-//   WATCHDOG=1 also while the screen is switched off on purpose (the loop
-//              then sleeps but is alive)
+//   WATCHDOG=1 also while the screen is switched off on purpose, or while
+//              no screen is connected (STATUS=SCENE: waiting for a screen;
+//              the loop then sleeps but is alive)
 //   STOPPING=1 when the loop ends
 // Sends are non-blocking (MSG_DONTWAIT) from fixed buffers: nothing in the
 // frame loop allocates or waits. Without $NOTIFY_SOCKET it does nothing.
@@ -48,8 +49,11 @@ class SdNotify {
   void frame_presented(uint64_t frames, Clock::time_point now);
   // A scene swapped in: STATUS= names it from now on (frame loop; no allocation).
   void set_scene(const std::string& scene);
-  // The screen is off on purpose and the loop is alive: watchdog pings only.
-  void idle(Clock::time_point now);
+  // The screen is off on purpose (or, `why` = "waiting for a screen", none
+  // is connected) and the loop is alive: STATUS=SCENE: WHY once, READY=1 if
+  // not sent yet, then watchdog pings only. `why` must outlive the call
+  // sequence (a string literal).
+  void idle(Clock::time_point now, const char* why = "screen off");
   // Any thread (a send on a fixed socket): a reload begins / is done.
   void reloading();
   void reloaded();
@@ -62,7 +66,7 @@ class SdNotify {
   socklen_t addr_len_ = 0;
   int64_t ping_ns_ = 0;
   bool ready_ = false;
-  bool idle_ = false;  // the screen is off: STATUS= said so once
+  const char* idle_ = nullptr;  // why the loop idles: STATUS= said so once
   Clock::time_point next_ping_{};
   Clock::time_point status_since_{};
   uint64_t status_frames_ = 0;

@@ -68,6 +68,17 @@ class Display {
     (void)on;
     return false;
   }
+  // False while there is nowhere to show frames (DRM: no monitor connected
+  // or switched on, with --display drm). The frame loop then draws nothing
+  // and calls wait_for_screen() instead, so it is alive but idle.
+  virtual bool screen_present() const { return true; }
+  // Waits at most timeout_ms for a screen to appear (DRM: hot-plug uevents,
+  // the connectors probed again and the mode chosen again); returns
+  // screen_present().
+  virtual bool wait_for_screen(int timeout_ms) {
+    (void)timeout_ms;
+    return true;
+  }
   // Waits until everything written so far is on disk (headless). Throws on I/O failure.
   virtual void finish() {}
 };

@@ -3,7 +3,10 @@
 // paced by the display's vertical blank. Restores the CRTC it found on exit.
 #include <drm_fourcc.h>
 #include <gbm.h>
+#include <libudev.h>
 #include <poll.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <xf86drm.h>
 #include <xf86drmMode.h>
 
@@ -31,6 +34,9 @@ constexpr int kFlipTimeoutMs = 2000;
 // shown; getting master back is retried after 50 ms, then less and less
 // often, at most 500 ms apart (the frame loop runs at that rate meanwhile).
 constexpr int kFirstRetryMs = 50, kMaxRetryMs = 500;
+// Without a uevent monitor (no netlink socket allowed), the connectors are
+// looked at this often while no screen is connected.
+constexpr int kReprobeMs = 2000;
 
 std::string errno_string(int e) { return std::strerror(e); }
 
@@ -95,22 +101,27 @@ struct BufferFb {
 
 class DrmDisplay final : public Display {
  public:
-  explicit DrmDisplay(const DisplayOptions& options) : out_(open_kms_output(options, kFormat)) {
-    width_ = out_.mode.hdisplay;
-    height_ = out_.mode.vdisplay;
-    saved_crtc_ = drmModeGetCrtc(out_.fd, out_.crtc_id);
+  // With --display drm (not auto) a card with nothing connected is taken
+  // as it is: the kiosk waits for a screen (hot-plug) instead of exiting.
+  explicit DrmDisplay(const DisplayOptions& options)
+      : options_(options), out_(open_kms_output(options, kFormat, options.kind == "drm")) {
+    screen_ = out_.connector_id != 0;
     if (!options.vsync) LOG_INFO("drm: vsync cannot be turned off on KMS; flips stay vblank-paced");
     try {
-      init_gbm_egl();
-      if (out_.atomic) {
-        if (drmModeCreatePropertyBlob(out_.fd, &out_.mode, sizeof out_.mode, &mode_blob_) != 0) {
-          LOG_WARN("drm: cannot create a mode blob (%s): falling back to legacy modesetting",
-                   errno_string(errno).c_str());
-          out_.atomic = false;
-        }
+      open_hotplug_monitor();
+      init_egl();
+      if (screen_) {
+        take_mode(false);
+      } else {
+        egl_->make_current(EGL_NO_SURFACE);  // scenes build their GL objects meanwhile
+        LOG_WARN(
+            "drm: no screen is connected to %s: waiting for one (drawing starts when a "
+            "monitor is connected or switched on)",
+            out_.device.c_str());
       }
     } catch (...) {
       release();
+      close_hotplug_monitor();
       throw;
     }
     event_context_.version = 2;
@@ -133,6 +144,7 @@ class DrmDisplay final : public Display {
           static_cast<long long>(missed_),
           pauses_ ? (", " + std::to_string(pauses_) + " times without DRM master").c_str() : "");
     release();
+    close_hotplug_monitor();
   }
 
   std::string_view name() const override { return "drm"; }
@@ -147,6 +159,7 @@ class DrmDisplay final : public Display {
   }
 
   void present() override {
+    if (!screen_) return;  // the frame loop waits in wait_for_screen() meanwhile
     if (!eglSwapBuffers(egl_->display(), egl_surface_))
       throw RuntimeError("drm: eglSwapBuffers failed: " + egl_error_string(eglGetError()));
     gbm_bo* bo = gbm_surface_lock_front_buffer(surface_);
@@ -192,7 +205,18 @@ class DrmDisplay final : public Display {
     ++presented_;
   }
 
-  bool poll_events(DisplayEvents&) override { return true; }
+  // A hot-plug uevent, looked for without blocking (one poll() per frame).
+  bool poll_events(DisplayEvents&) override {
+    follow_hotplug(0);
+    return true;
+  }
+
+  bool screen_present() const override { return screen_; }
+
+  bool wait_for_screen(int timeout_ms) override {
+    if (!screen_) follow_hotplug(timeout_ms);
+    return screen_;
+  }
 
   // Off: the flip in flight completes, then the CRTC goes inactive with the
   // plane detached (atomic) or the connector's DPMS goes Off (legacy); the
@@ -200,6 +224,10 @@ class DrmDisplay final : public Display {
   // again (atomic) or DPMS On and flips as before (legacy).
   bool set_screen_power(bool on) override {
     if (on == screen_on_) return true;
+    if (!screen_) {  // nothing connected: the mode is set when a screen is
+      screen_on_ = on;
+      return true;
+    }
     try {
       wait_for_flip();
     } catch (const std::exception& e) {
@@ -275,7 +303,150 @@ class DrmDisplay final : public Display {
   void wait_for_retry() const { std::this_thread::sleep_until(next_retry_); }
 
  private:
-  void init_gbm_egl() {
+  // --- Connector hot-plug -------------------------------------------------
+  // udev's "drm" uevents (a change of the card: HOTPLUG=1 from the driver's
+  // connector polling or interrupt, or a synthetic `change`) make the
+  // connectors be looked at again: a screen that appears is driven with the
+  // mode chosen again, one that goes away pauses drawing (CRTC off).
+  void open_hotplug_monitor() {
+    struct stat st {};
+    if (fstat(out_.fd, &st) == 0) card_devnum_ = st.st_rdev;
+    udev_ = udev_new();
+    // udevd's events where it runs (after its rules); the kernel's otherwise
+    // (a container or the virtual board without udevd).
+    const char* source = access("/run/udev/control", F_OK) == 0 ? "udev" : "kernel";
+    if (udev_) monitor_ = udev_monitor_new_from_netlink(udev_, source);
+    if (!monitor_ ||
+        udev_monitor_filter_add_match_subsystem_devtype(monitor_, "drm", nullptr) < 0 ||
+        udev_monitor_enable_receiving(monitor_) < 0) {
+      LOG_WARN(
+          "drm: cannot listen for hot-plug uevents (%s): without a screen the connectors are "
+          "looked at every %d ms instead",
+          errno_string(errno).c_str(), kReprobeMs);
+      if (monitor_) udev_monitor_unref(monitor_);
+      monitor_ = nullptr;
+      return;
+    }
+    uevent_fd_ = udev_monitor_get_fd(monitor_);
+    LOG_INFO("drm: following connector hot-plug on %s through %s uevents", out_.device.c_str(),
+             source);
+  }
+
+  void close_hotplug_monitor() {
+    if (monitor_) udev_monitor_unref(monitor_);
+    if (udev_) udev_unref(udev_);
+    monitor_ = nullptr;
+    udev_ = nullptr;
+    uevent_fd_ = -1;
+  }
+
+  // Waits up to timeout_ms (0: not at all) for a uevent of this card, then
+  // looks at the connectors again if one came.
+  void follow_hotplug(int timeout_ms) {
+    if (uevent_fd_ < 0) {
+      if (screen_ || timeout_ms <= 0) return;
+      const auto now = std::chrono::steady_clock::now();
+      if (now < next_reprobe_) {
+        std::this_thread::sleep_for(
+            std::min(std::chrono::milliseconds(timeout_ms),
+                     std::chrono::duration_cast<std::chrono::milliseconds>(next_reprobe_ - now)));
+        return;
+      }
+      next_reprobe_ = now + std::chrono::milliseconds(kReprobeMs);
+      reprobe();
+      return;
+    }
+    pollfd p{uevent_fd_, POLLIN, 0};
+    if (poll(&p, 1, timeout_ms) <= 0 || !(p.revents & POLLIN)) return;
+    bool ours = false;
+    while (udev_device* d = udev_monitor_receive_device(monitor_)) {
+      const char* action = udev_device_get_action(d);
+      if (udev_device_get_devnum(d) == card_devnum_ && action && std::strcmp(action, "change") == 0)
+        ours = true;
+      udev_device_unref(d);
+    }
+    if (ours) reprobe();
+  }
+
+  void reprobe() {
+    const bool had_screen = screen_;
+    const uint32_t old_connector = out_.connector_id;
+    const drmModeModeInfo old_mode = out_.mode;
+    std::string why;
+    if (screen_) {
+      // Ours first: still connected with the same mode is nothing to do.
+      drmModeConnector* c = drmModeGetConnector(out_.fd, out_.connector_id);
+      const bool connected = c && c->connection == DRM_MODE_CONNECTED && c->count_modes > 0;
+      drmModeFreeConnector(c);
+      if (!connected) {
+        screen_gone();
+        why = "nothing connected";
+      }
+    }
+    if (!probe_kms_connector(out_, options_, kFormat, why)) {
+      if (!had_screen)
+        LOG_INFO("drm: a hot-plug event on %s: still %s", out_.device.c_str(), why.c_str());
+      return;
+    }
+    if (screen_ && out_.connector_id == old_connector &&
+        std::memcmp(&out_.mode, &old_mode, sizeof old_mode) == 0)
+      return;
+    if (screen_) screen_gone();  // another connector or mode: set up afresh
+    take_mode(true);
+  }
+
+  // The CRTC off (nothing to show it on); the next screen is set up afresh.
+  void screen_gone() {
+    try {
+      wait_for_flip();
+    } catch (const std::exception& e) {
+      LOG_WARN("%s", e.what());
+    }
+    if (!paused_) {
+      bool off = false;
+      if (out_.atomic) {
+        const KmsPropertyIds& p = out_.props;
+        req_.clear();
+        req_.add(out_.crtc_id, p.crtc_active, 0);
+        req_.add(out_.plane_id, p.plane_fb_id, 0);
+        req_.add(out_.plane_id, p.plane_crtc_id, 0);
+        off = req_.commit(out_.fd, DRM_MODE_ATOMIC_ALLOW_MODESET, nullptr) == 0;
+      }
+      if (!off) drmModeSetCrtc(out_.fd, out_.crtc_id, 0, 0, 0, nullptr, 0, nullptr);
+    }
+    screen_ = false;
+    ++screens_lost_;
+    LOG_WARN("drm: the screen on %s went away: drawing paused until a screen is connected",
+             out_.connector_name.c_str());
+  }
+
+  // out_ holds a connected connector and its mode: surfaces of that size
+  // (made again when the size changed), the mode blob; the next present()
+  // sets the mode.
+  void take_mode(bool hotplugged) {
+    const int w = out_.mode.hdisplay, h = out_.mode.vdisplay;
+    if (surface_ && (w != width_ || h != height_)) destroy_surfaces();
+    width_ = w;
+    height_ = h;
+    if (!saved_crtc_) saved_crtc_ = drmModeGetCrtc(out_.fd, out_.crtc_id);
+    if (!surface_) create_surfaces();
+    if (mode_blob_) drmModeDestroyPropertyBlob(out_.fd, mode_blob_);
+    mode_blob_ = 0;
+    if (out_.atomic &&
+        drmModeCreatePropertyBlob(out_.fd, &out_.mode, sizeof out_.mode, &mode_blob_) != 0) {
+      LOG_WARN("drm: cannot create a mode blob (%s): falling back to legacy modesetting",
+               errno_string(errno).c_str());
+      out_.atomic = false;
+    }
+    if (hotplugged)
+      LOG_INFO("drm: a screen on %s: mode %s; drawing on it", out_.connector_name.c_str(),
+               describe_mode(out_.mode).c_str());
+    needs_modeset_ = true;
+    resync_sequence_ = true;
+    screen_ = true;
+  }
+
+  void init_egl() {
     gbm_ = gbm_create_device(out_.fd);
     if (!gbm_) throw RuntimeError("drm: gbm_create_device failed on " + out_.device);
     if (!egl_has_extension(EGL_NO_DISPLAY, "EGL_KHR_platform_gbm") &&
@@ -286,7 +457,9 @@ class DrmDisplay final : public Display {
     if (!get_platform_display) throw RuntimeError("drm: no eglGetPlatformDisplayEXT");
     egl_.emplace(get_platform_display(EGL_PLATFORM_GBM_KHR, gbm_, nullptr), EGL_WINDOW_BIT,
                  static_cast<EGLint>(kFormat));
+  }
 
+  void create_surfaces() {
     // Modifiers both the plane scans out and EGL renders to.
     std::vector<uint64_t> mods = out_.modifiers;
     mods.erase(std::remove(mods.begin(), mods.end(), DRM_FORMAT_MOD_INVALID), mods.end());
@@ -523,7 +696,7 @@ class DrmDisplay final : public Display {
   }
 
   void restore_crtc() {
-    if (presented_ == 0) return;  // never touched the display
+    if (presented_ == 0 || !screen_) return;  // never touched the display, or it is gone
     if (paused_) {
       LOG_INFO("drm: another program holds the display: leaving CRTC %u as it is", out_.crtc_id);
       return;
@@ -547,9 +720,12 @@ class DrmDisplay final : public Display {
                what.c_str(), errno_string(errno).c_str());
   }
 
-  void release() {
+  // The GBM and EGL surfaces gone; the context stays current without one
+  // (keep_context) so GL objects live on for the next size.
+  void destroy_surfaces(bool keep_context = true) {
     if (egl_ && egl_surface_ != EGL_NO_SURFACE) {
-      eglMakeCurrent(egl_->display(), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      eglMakeCurrent(egl_->display(), EGL_NO_SURFACE, EGL_NO_SURFACE,
+                     keep_context ? egl_->context() : EGL_NO_CONTEXT);
       eglDestroySurface(egl_->display(), egl_surface_);
       egl_surface_ = EGL_NO_SURFACE;
     }
@@ -560,6 +736,11 @@ class DrmDisplay final : public Display {
       gbm_surface_destroy(surface_);  // removes the framebuffers (BufferFb::destroy)
       surface_ = nullptr;
     }
+  }
+
+  void release() {
+    if (egl_) eglMakeCurrent(egl_->display(), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    destroy_surfaces(false);
     egl_.reset();
     if (gbm_) gbm_device_destroy(gbm_);
     gbm_ = nullptr;
@@ -569,7 +750,8 @@ class DrmDisplay final : public Display {
     saved_crtc_ = nullptr;
   }
 
-  KmsOutput out_;  // closes the card and drops master last
+  DisplayOptions options_;  // the mode is chosen again by them on hot-plug
+  KmsOutput out_;           // closes the card and drops master last
   int width_ = 0, height_ = 0;
   drmModeCrtc* saved_crtc_ = nullptr;
   gbm_device* gbm_ = nullptr;
@@ -594,6 +776,13 @@ class DrmDisplay final : public Display {
   int retry_ms_ = kFirstRetryMs;
   uint64_t pauses_ = 0, modesets_ = 0;
   std::chrono::steady_clock::time_point paused_since_{}, next_retry_{};
+  bool screen_ = false;  // a connected connector with its mode set up
+  uint64_t screens_lost_ = 0;
+  udev* udev_ = nullptr;
+  udev_monitor* monitor_ = nullptr;
+  int uevent_fd_ = -1;  // the monitor's (non-blocking); -1: re-probe every kReprobeMs
+  dev_t card_devnum_ = 0;
+  std::chrono::steady_clock::time_point next_reprobe_{};
 };
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "core/error.h"
@@ -217,7 +218,107 @@ std::string describe_mode(const drmModeModeInfo& m) {
          std::to_string(m.vrefresh) + ((m.type & DRM_MODE_TYPE_PREFERRED) ? " (preferred)" : "");
 }
 
-KmsOutput open_kms_output(const DisplayOptions& options, uint32_t format) {
+bool probe_kms_connector(KmsOutput& out, const DisplayOptions& options, uint32_t format,
+                         std::string& why) {
+  const int fd = out.fd;
+  // Universal planes before resources, so the primary plane is listed.
+  const bool universal = drmSetClientCap(fd, DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) == 0;
+  Resources res(drmModeGetResources(fd));
+  if (!res) {
+    why = "render-only device, no KMS";
+    return false;
+  }
+  Connector conn;
+  std::string states;
+  for (int i = 0; i < res->count_connectors && !conn; ++i) {
+    Connector c(drmModeGetConnector(fd, res->connectors[i]));
+    if (!c) continue;
+    states +=
+        (states.empty() ? "" : ", ") + connector_name(*c) + " " + connection_name(c->connection);
+    if (c->connection == DRM_MODE_CONNECTED && c->count_modes > 0) conn = std::move(c);
+  }
+  if (!conn) {
+    why = states.empty() ? "no connectors" : "nothing connected (" + states + ")";
+    return false;
+  }
+  const std::string name = connector_name(*conn);
+  uint32_t crtc_id = 0;
+  const int crtc_index = pick_crtc(fd, *res, *conn, crtc_id);
+  if (crtc_index < 0) {
+    why = "no CRTC can drive " + name;
+    return false;
+  }
+
+  // The CRTC's primary plane, and whether it scans out `format`.
+  uint32_t plane_id = 0;
+  bool format_ok = !universal;  // legacy: the CRTC takes what AddFB2 accepted
+  if (universal) {
+    PlaneRes planes(drmModeGetPlaneResources(fd));
+    for (uint32_t i = 0; planes && i < planes->count_planes && !plane_id; ++i) {
+      Plane p(drmModeGetPlane(fd, planes->planes[i]));
+      if (!p || !(p->possible_crtcs & (1u << crtc_index))) continue;
+      uint64_t type = 0;
+      if (!PropertyTable(fd, p->plane_id, DRM_MODE_OBJECT_PLANE).value("type", type) ||
+          type != DRM_PLANE_TYPE_PRIMARY)
+        continue;
+      plane_id = p->plane_id;
+      for (uint32_t f = 0; f < p->count_formats; ++f) format_ok |= p->formats[f] == format;
+    }
+    if (!plane_id) format_ok = true;  // no plane list: let the legacy path try
+  }
+  if (!format_ok) {
+    why = "the primary plane of " + name + " cannot show XRGB8888";
+    return false;
+  }
+
+  out.connector_id = conn->connector_id;
+  out.connector_name = name;
+  out.crtc_id = crtc_id;
+  out.plane_id = plane_id;
+  out.mode = *pick_mode(*conn, options, name);
+  uint64_t cap = 0;
+  out.addfb2_modifiers = drmGetCap(fd, DRM_CAP_ADDFB2_MODIFIERS, &cap) == 0 && cap;
+  out.modifiers.clear();
+  if (plane_id) out.modifiers = plane_modifiers(fd, plane_id, format);
+  out.props = KmsPropertyIds{};
+  out.atomic = false;
+
+  const char* legacy_env = std::getenv("CANDELA_DRM_LEGACY");
+  const bool force_legacy = legacy_env && *legacy_env && std::strcmp(legacy_env, "0") != 0;
+  if (force_legacy) {
+    LOG_INFO("drm: CANDELA_DRM_LEGACY set: using legacy modesetting");
+  } else if (!plane_id) {
+    LOG_INFO("drm: no universal planes: using legacy modesetting");
+  } else if (drmSetClientCap(fd, DRM_CLIENT_CAP_ATOMIC, 1) != 0) {
+    LOG_INFO("drm: %s has no atomic modesetting: using legacy modesetting", out.driver.c_str());
+  } else {
+    KmsPropertyIds& p = out.props;
+    PropertyTable c(fd, conn->connector_id, DRM_MODE_OBJECT_CONNECTOR);
+    p.connector_crtc_id = c.id("CRTC_ID");
+    PropertyTable cr(fd, crtc_id, DRM_MODE_OBJECT_CRTC);
+    p.crtc_mode_id = cr.id("MODE_ID");
+    p.crtc_active = cr.id("ACTIVE");
+    PropertyTable pl(fd, plane_id, DRM_MODE_OBJECT_PLANE);
+    p.plane_fb_id = pl.id("FB_ID");
+    p.plane_crtc_id = pl.id("CRTC_ID");
+    p.plane_src_x = pl.id("SRC_X");
+    p.plane_src_y = pl.id("SRC_Y");
+    p.plane_src_w = pl.id("SRC_W");
+    p.plane_src_h = pl.id("SRC_H");
+    p.plane_crtc_x = pl.id("CRTC_X");
+    p.plane_crtc_y = pl.id("CRTC_Y");
+    p.plane_crtc_w = pl.id("CRTC_W");
+    p.plane_crtc_h = pl.id("CRTC_H");
+    out.atomic = p.complete();
+    if (!out.atomic) LOG_WARN("drm: atomic properties missing: falling back to legacy modesetting");
+  }
+  LOG_INFO("drm: %s (%s), connector %s, mode %s, CRTC %u, plane %u, %s", out.device.c_str(),
+           out.driver.c_str(), name.c_str(), describe_mode(out.mode).c_str(), crtc_id, plane_id,
+           out.atomic ? "atomic" : "legacy");
+  return true;
+}
+
+KmsOutput open_kms_output(const DisplayOptions& options, uint32_t format, bool wait_for_screen) {
   std::vector<std::string> devices;
   if (!options.drm_device.empty()) {
     devices.push_back(options.drm_device);
@@ -239,12 +340,8 @@ KmsOutput open_kms_output(const DisplayOptions& options, uint32_t format) {
           "dtoverlay=vc4-kms-v3d)");
   }
 
-  const bool force_legacy = [] {
-    const char* v = std::getenv("CANDELA_DRM_LEGACY");
-    return v && *v && std::strcmp(v, "0") != 0;
-  }();
-
   std::string tried;
+  std::optional<KmsOutput> waiting;  // the first KMS card with nothing connected, DRM master
   for (const std::string& path : devices) {
     Fd fd(open(path.c_str(), O_RDWR | O_CLOEXEC));
     if (fd.get() < 0) {
@@ -260,120 +357,33 @@ KmsOutput open_kms_output(const DisplayOptions& options, uint32_t format) {
       LOG_INFO("drm: skipping %s: not a DRM device", path.c_str());
       continue;
     }
-    const std::string driver = version->name ? version->name : "?";
-    // Universal planes before resources, so the primary plane is listed.
-    const bool universal = drmSetClientCap(fd.get(), DRM_CLIENT_CAP_UNIVERSAL_PLANES, 1) == 0;
-    Resources res(drmModeGetResources(fd.get()));
-    if (!res) {
-      tried += "\n  " + path + " (" + driver + "): render-only device, no KMS";
-      LOG_INFO("drm: skipping %s (%s): render-only, no KMS resources", path.c_str(),
-               driver.c_str());
+    KmsOutput out;
+    out.device = path;
+    out.driver = version->name ? version->name : "?";
+    out.fd = fd.release();
+    std::string why;
+    const bool found = probe_kms_connector(out, options, format, why);
+    const bool no_screen = !found && why.rfind("nothing connected", 0) == 0;
+    if (!found && !(no_screen && wait_for_screen && !waiting)) {
+      tried += "\n  " + path + " (" + out.driver + "): " + why;
+      LOG_INFO("drm: skipping %s (%s): %s", path.c_str(), out.driver.c_str(), why.c_str());
       continue;
     }
-    Connector conn;
-    std::string states;
-    for (int i = 0; i < res->count_connectors && !conn; ++i) {
-      Connector c(drmModeGetConnector(fd.get(), res->connectors[i]));
-      if (!c) continue;
-      states +=
-          (states.empty() ? "" : ", ") + connector_name(*c) + " " + connection_name(c->connection);
-      if (c->connection == DRM_MODE_CONNECTED && c->count_modes > 0) conn = std::move(c);
-    }
-    if (!conn) {
-      const std::string why =
-          states.empty() ? "no connectors" : "nothing connected (" + states + ")";
-      tried += "\n  " + path + " (" + driver + "): " + why;
-      LOG_INFO("drm: skipping %s (%s): %s", path.c_str(), driver.c_str(), why.c_str());
-      continue;
-    }
-    const std::string name = connector_name(*conn);
-    uint32_t crtc_id = 0;
-    const int crtc_index = pick_crtc(fd.get(), *res, *conn, crtc_id);
-    if (crtc_index < 0) {
-      tried += "\n  " + path + " (" + driver + "): no CRTC can drive " + name;
-      LOG_INFO("drm: skipping %s: no CRTC can drive %s", path.c_str(), name.c_str());
-      continue;
-    }
-
-    // The CRTC's primary plane, and whether it scans out `format`.
-    uint32_t plane_id = 0;
-    bool format_ok = !universal;  // legacy: the CRTC takes what AddFB2 accepted
-    if (universal) {
-      PlaneRes planes(drmModeGetPlaneResources(fd.get()));
-      for (uint32_t i = 0; planes && i < planes->count_planes && !plane_id; ++i) {
-        Plane p(drmModeGetPlane(fd.get(), planes->planes[i]));
-        if (!p || !(p->possible_crtcs & (1u << crtc_index))) continue;
-        uint64_t type = 0;
-        if (!PropertyTable(fd.get(), p->plane_id, DRM_MODE_OBJECT_PLANE).value("type", type) ||
-            type != DRM_PLANE_TYPE_PRIMARY)
-          continue;
-        plane_id = p->plane_id;
-        for (uint32_t f = 0; f < p->count_formats; ++f) format_ok |= p->formats[f] == format;
-      }
-      if (!plane_id) format_ok = true;  // no plane list: let the legacy path try
-    }
-    if (!format_ok) {
-      tried += "\n  " + path + ": the primary plane of " + name + " cannot show XRGB8888";
-      LOG_INFO("drm: skipping %s: primary plane cannot scan out XRGB8888", path.c_str());
-      continue;
-    }
-
     // Since Linux 5.8 the first opener is master; otherwise someone else
     // (a desktop, another kiosk) holds the display.
-    if (!drmIsMaster(fd.get()) && drmSetMaster(fd.get()) != 0) {
+    if (!drmIsMaster(out.fd) && drmSetMaster(out.fd) != 0) {
       const int e = errno;
       tried += "\n  " + path + ": cannot become DRM master (" + std::strerror(e) +
                "): another program (a desktop, another candela) is showing on it";
       LOG_INFO("drm: skipping %s: cannot become DRM master", path.c_str());
       continue;
     }
-
-    KmsOutput out;
-    out.device = path;
-    out.driver = driver;
-    out.connector_id = conn->connector_id;
-    out.connector_name = name;
-    out.crtc_id = crtc_id;
-    out.plane_id = plane_id;
-    out.mode = *pick_mode(*conn, options, name);
-    uint64_t cap = 0;
-    out.addfb2_modifiers = drmGetCap(fd.get(), DRM_CAP_ADDFB2_MODIFIERS, &cap) == 0 && cap;
-    if (plane_id) out.modifiers = plane_modifiers(fd.get(), plane_id, format);
-
-    if (force_legacy) {
-      LOG_INFO("drm: CANDELA_DRM_LEGACY set: using legacy modesetting");
-    } else if (!plane_id) {
-      LOG_INFO("drm: no universal planes: using legacy modesetting");
-    } else if (drmSetClientCap(fd.get(), DRM_CLIENT_CAP_ATOMIC, 1) != 0) {
-      LOG_INFO("drm: %s has no atomic modesetting: using legacy modesetting", driver.c_str());
-    } else {
-      KmsPropertyIds& p = out.props;
-      PropertyTable c(fd.get(), conn->connector_id, DRM_MODE_OBJECT_CONNECTOR);
-      p.connector_crtc_id = c.id("CRTC_ID");
-      PropertyTable cr(fd.get(), crtc_id, DRM_MODE_OBJECT_CRTC);
-      p.crtc_mode_id = cr.id("MODE_ID");
-      p.crtc_active = cr.id("ACTIVE");
-      PropertyTable pl(fd.get(), plane_id, DRM_MODE_OBJECT_PLANE);
-      p.plane_fb_id = pl.id("FB_ID");
-      p.plane_crtc_id = pl.id("CRTC_ID");
-      p.plane_src_x = pl.id("SRC_X");
-      p.plane_src_y = pl.id("SRC_Y");
-      p.plane_src_w = pl.id("SRC_W");
-      p.plane_src_h = pl.id("SRC_H");
-      p.plane_crtc_x = pl.id("CRTC_X");
-      p.plane_crtc_y = pl.id("CRTC_Y");
-      p.plane_crtc_w = pl.id("CRTC_W");
-      p.plane_crtc_h = pl.id("CRTC_H");
-      out.atomic = p.complete();
-      if (!out.atomic)
-        LOG_WARN("drm: atomic properties missing: falling back to legacy modesetting");
-    }
-    LOG_INFO("drm: %s (%s), connector %s, mode %s, CRTC %u, plane %u, %s", path.c_str(),
-             driver.c_str(), name.c_str(), describe_mode(out.mode).c_str(), crtc_id, plane_id,
-             out.atomic ? "atomic" : "legacy");
-    out.fd = fd.release();
-    return out;
+    if (found) return out;
+    tried += "\n  " + path + " (" + out.driver + "): " + why;
+    LOG_INFO("drm: %s (%s): %s", path.c_str(), out.driver.c_str(), why.c_str());
+    waiting.emplace(std::move(out));
   }
+  if (waiting) return std::move(*waiting);
   throw RuntimeError(card_list_error(tried));
 }
 

@@ -51,8 +51,19 @@ struct KmsOutput {
 // the mode matching options.width/height/refresh_hz or the preferred one.
 // `format` (a DRM fourcc) must be scanned out by the primary plane. Set
 // CANDELA_DRM_LEGACY=1 in the environment to force the legacy (non-atomic)
-// path. Throws RuntimeError naming every device tried and why it was skipped.
-KmsOutput open_kms_output(const DisplayOptions& options, uint32_t format);
+// path. With `wait_for_screen`, a KMS card with nothing connected (the first
+// one) is returned as it is, master, with connector_id 0: a screen plugged in
+// later is found by probe_kms_connector(). Throws RuntimeError naming every
+// device tried and why it was skipped.
+KmsOutput open_kms_output(const DisplayOptions& options, uint32_t format,
+                          bool wait_for_screen = false);
+
+// Looks at out.fd's connectors again: the first connected one, its CRTC,
+// primary plane, mode (chosen as above), modifiers and atomic properties go
+// into `out`. False with `why` ("nothing connected (...)", ...) otherwise,
+// leaving `out` as it was.
+bool probe_kms_connector(KmsOutput& out, const DisplayOptions& options, uint32_t format,
+                         std::string& why);
 
 std::string describe_mode(const drmModeModeInfo& mode);
 

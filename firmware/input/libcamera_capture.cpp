@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -160,6 +161,63 @@ std::shared_ptr<lc::CameraManager> shared_manager() {
   return cm;
 }
 
+// Cameras lost without libcamera being told (see close_all): kept, started
+// and acquired, for the life of the process. The manager they belong to
+// still lists them, so a retry would find one "busy" (held by this very
+// process): open() asks here first and says what really happened.
+struct Abandoned {
+  std::vector<std::unique_ptr<lc::Request>> requests;
+  std::unique_ptr<lc::FrameBufferAllocator> allocator;
+  std::unique_ptr<lc::CameraConfiguration> config;
+  std::shared_ptr<lc::Camera> camera;
+  std::shared_ptr<lc::CameraManager> manager;
+};
+std::mutex abandoned_mutex;
+std::vector<Abandoned>& abandoned_cameras() {
+  static auto* list = new std::vector<Abandoned>;  // reachable, never destroyed
+  return *list;
+}
+bool is_abandoned(const lc::Camera* camera) {
+  std::lock_guard<std::mutex> lock(abandoned_mutex);
+  for (const Abandoned& a : abandoned_cameras())
+    if (a.camera.get() == camera) return true;
+  return false;
+}
+// Takes a lost camera off its manager's list, so that retries see it gone
+// (not "busy": held by this process) and the camera, when it comes back, can
+// be registered again: libcamera 0.0.3 aborts the whole process ("Trying to
+// register a camera with a duplicated ID") when a camera it was not told
+// about comes back under the same id. CameraManager::removeCamera() must run
+// on the manager's own thread (it asserts so), the thread the camera was
+// made on: a blocking call there through an object moved to it.
+// (Public in libcamera 0.0.3, private in later releases, which are told of
+// a lost camera themselves: checked at compile time.)
+class ManagerThreadCall : public lc::Object {
+ public:
+  explicit ManagerThreadCall(std::function<void()> fn) : fn_(std::move(fn)) {}
+  void run() { fn_(); }
+
+ private:
+  std::function<void()> fn_;
+};
+template <typename Manager>
+void forget_camera(Manager* manager, const std::shared_ptr<lc::Camera>& camera) {
+  if constexpr (requires(Manager * m, std::shared_ptr<lc::Camera> c) { m->removeCamera(c); }) {
+    if (!manager || !camera || !camera->thread()) return;
+    auto* call = new ManagerThreadCall([manager, camera] { manager->removeCamera(camera); });
+    call->moveToThread(camera->thread());
+    call->invokeMethod(&ManagerThreadCall::run, lc::ConnectionTypeBlocking);
+    call->deleteLater();  // on that thread
+  }
+}
+
+std::string lost_camera_error(const std::string& id) {
+  return "libcamera: camera \"" + id +
+         "\" was lost (unplugged or its driver unbound) without libcamera being told, and "
+         "libcamera still lists it: it cannot be opened again until candela restarts "
+         "(libcamera allows one camera manager per process)";
+}
+
 // Scalars as JSON numbers/booleans; arrays and the rest as JSON strings.
 std::string control_json(const lc::ControlValue& v) {
   nlohmann::json j;  // null
@@ -257,7 +315,13 @@ LibcameraCapture::LibcameraCapture(const CaptureSettings& s) {
         throw RuntimeError(
             "libcamera: no camera found (libcamera lists none: is the camera connected and, "
             "for USB or vimc cameras, udev running?)");
-      camera_ = cameras.front();
+      // The first one this process has not lost.
+      for (const auto& c : cameras)
+        if (!is_abandoned(c.get())) {
+          camera_ = c;
+          break;
+        }
+      if (!camera_) throw RuntimeError(lost_camera_error(cameras.front()->id()));
     } else {
       camera_ = manager_->get(s.device);
       if (!camera_) {
@@ -268,6 +332,7 @@ LibcameraCapture::LibcameraCapture(const CaptureSettings& s) {
                            "\" (cameras: " + (known.empty() ? "none" : known) + ")");
       }
     }
+    if (is_abandoned(camera_.get())) throw RuntimeError(lost_camera_error(camera_->id()));
     id_ = camera_->id();
     model_ = camera_->properties().get(lc::properties::Model).value_or(id_);
     nodes_before_ = open_camera_nodes();
@@ -402,27 +467,22 @@ void LibcameraCapture::close_all() {
     // (requests still queued in a pipeline whose STREAMOFF failed) that
     // aborts the process: leave its objects be instead; the frames recorded
     // so far matter more than a few leaked handles.
-    LOG_WARN("libcamera: camera \"%s\" is gone but libcamera was not told; leaving it unstopped",
-             id_.c_str());
+    LOG_WARN(
+        "libcamera: camera \"%s\" is gone but libcamera was not told; leaving it unstopped and "
+        "taking it off libcamera's list (it is opened afresh when it comes back)",
+        id_.c_str());
     if (connected_) {
       camera_->requestCompleted.disconnect(this, &LibcameraCapture::on_completed);
       camera_->disconnected.disconnect(this, &LibcameraCapture::on_disconnected);
     }
+    // Off the manager's list: retries find no camera until it is back.
+    forget_camera(manager_.get(), camera_);
     // Kept for the life of the process (reachable, never destroyed: even at
     // exit, tearing these down would reach the same assertion).
-    struct Abandoned {
-      std::vector<std::unique_ptr<lc::Request>> requests;
-      std::unique_ptr<lc::FrameBufferAllocator> allocator;
-      std::unique_ptr<lc::CameraConfiguration> config;
-      std::shared_ptr<lc::Camera> camera;
-      std::shared_ptr<lc::CameraManager> manager;
-    };
-    static std::mutex abandoned_mutex;
-    static auto* abandoned = new std::vector<Abandoned>;
     {
       std::lock_guard<std::mutex> lock(abandoned_mutex);
-      abandoned->push_back({std::move(requests_), std::move(allocator_), std::move(config_),
-                            std::move(camera_), manager_});
+      abandoned_cameras().push_back({std::move(requests_), std::move(allocator_),
+                                     std::move(config_), std::move(camera_), manager_});
     }
     requests_.clear();
     started_ = acquired_ = connected_ = false;

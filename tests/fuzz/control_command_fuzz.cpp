@@ -4,8 +4,12 @@
 // line must give a command or an error of bounded length (issue 15: a 10 MB
 // bad value was echoed whole; "wind 0x10 0" was taken as 16), and every wind
 // command it accepts must drive the wind field for a few seconds without
-// going past what its gusts and steady wind allow together; every volume it
-// accepts is a level in [0, 1].
+// going past what its gusts and steady wind allow together; every volume and
+// brightness it accepts is a level in [0, 1] (or -1, the question); `screen`
+// is on, off or a question; `scene` a trimmed, non-empty name or path; the
+// kiosk's other commands (reload, schedule, state, ping, help) take no
+// arguments. Seeds for each command: tests/fuzz/corpus/control/; its words:
+// tests/fuzz/control_command.dict.
 //   build with clang: ninja -C build-fuzz control_command_fuzz (tests/fuzz/run-fuzz.sh)
 #include <cstdint>
 #include <string_view>
@@ -33,10 +37,24 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if (c.error.empty() || c.error.size() > 400) __builtin_trap();
       continue;
     }
-    // A volume is a level in [0, 1], or a question (below 0, exactly -1).
-    if (c.kind == ControlCommand::Kind::kVolume &&
+    // A volume or brightness is a level in [0, 1], or a question (exactly -1).
+    if ((c.kind == ControlCommand::Kind::kVolume || c.kind == ControlCommand::Kind::kBrightness) &&
         !((c.volume >= 0 && c.volume <= 1) || c.volume == -1.0f))
       __builtin_trap();
+    // screen: on (1), off (0) or a question (-1).
+    if (c.kind == ControlCommand::Kind::kScreen && c.screen != 0 && c.screen != 1 && c.screen != -1)
+      __builtin_trap();
+    // scene: a name or path, trimmed, within the line, never empty.
+    if (c.kind == ControlCommand::Kind::kScene) {
+      const std::string& n = c.scene;
+      if (n.empty() || n.size() > ControlServer::kMaxLine || n.find('\n') != std::string::npos ||
+          n.front() == ' ' || n.front() == '\t' || n.back() == ' ' || n.back() == '\t' ||
+          n.back() == '\r')
+        __builtin_trap();
+    }
+    // Only the kinds that carry one have a scene name or a screen state.
+    if (c.kind != ControlCommand::Kind::kScene && !c.scene.empty()) __builtin_trap();
+    if (c.kind != ControlCommand::Kind::kScreen && c.screen != -1) __builtin_trap();
     if (c.kind != ControlCommand::Kind::kWind) continue;
     const Fixed ax = c.event.x < Fixed{} ? -c.event.x : c.event.x;
     const Fixed az = c.event.z < Fixed{} ? -c.event.z : c.event.z;

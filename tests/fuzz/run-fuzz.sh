@@ -24,9 +24,12 @@ for entry in $targets; do
   work=build-fuzz/fuzz-$target
   rm -rf "$work" && mkdir -p "$work/corpus"
   log=$work/log.txt
+  # A target's words (tests/fuzz/TARGET.dict), where it has them.
+  dict=()
+  if [ -f "tests/fuzz/$target.dict" ]; then dict=(-dict="$PWD/tests/fuzz/$target.dict"); fi
   # New inputs go to $work/corpus; the committed seeds are read only.
   if ! (cd "$work" && ASAN_OPTIONS=detect_leaks=1 ../tests/fuzz/${target}_fuzz -max_total_time="$budget" \
-        -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 corpus \
+        -rss_limit_mb=2048 -timeout=10 -print_final_stats=1 "${dict[@]}" corpus \
         "$OLDPWD/tests/fuzz/corpus/$seeds") >"$log" 2>&1; then
     echo "run-fuzz: $target FAILED; see $log" >&2
     tail -40 "$log" >&2

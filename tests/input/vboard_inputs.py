@@ -422,7 +422,9 @@ def case_camera_libcamera_unplugged():
     """The kiosk's camera, through libcamera, unbound mid-run: the input says
     so, the display keeps running, and nothing is left spinning on the dead
     camera (libcamera 0.0.3 is not told and polled its removed nodes in a loop
-    that took the whole vCPU, for as long as the kiosk ran)."""
+    that took the whole vCPU, for as long as the kiosk ran). The retries say
+    the camera is gone (not "busy"), and when it is bound again the kiosk
+    reads it again."""
     vimc_camera_id()
     c = Candela("[[input]]\nkind = \"camera\"\nname = \"cam\"\nbackend = \"libcamera\"\n"
                 "device = \"auto\"\n", extra=("--fps", "5"))
@@ -442,6 +444,24 @@ def case_camera_libcamera_unplugged():
     wait_for("frames to keep coming", lambda: c.state()["frame"] > f0 + 5, timeout=30)
     check(c.proc.poll() is None, "the display keeps running")
     check("device nodes were removed" in c.log_text(), "the log says what happened")
+    # Its retries (every 2 s) say what is really the matter: the camera is
+    # not there (libcamera, not told, listed it still, held by this process:
+    # the retries said "busy (in use by another program)").
+    cam = wait_for("a retry's status",
+                   lambda: (lambda i: i if "no camera found" in i["status"] else None)(c.input("cam")),
+                   timeout=30)
+    check("libcamera lists none" in cam["status"], "the retries say the camera is gone: %s" % cam["status"])
+    check("busy" not in c.log_text(), "no retry calls it busy:\n" + c.log_text())
+    # The camera comes back (vimc bound again): the kiosk opens it again
+    # (libcamera 0.0.3 used to abort the process: a camera registered twice).
+    frames_lost = cam["frames"]
+    with open("/sys/bus/platform/drivers/vimc/bind", "w") as f:
+        f.write("vimc.0")
+    cam = wait_for("the camera to be opened again and deliver frames",
+                   lambda: (lambda i: i if i["status"] == "ok" and i["frames"] > frames_lost + 1 else None)(
+                       c.input("cam")), timeout=60)
+    check(c.proc.poll() is None, "the kiosk survives the camera coming back and reads it again: %s" % cam)
+    check("taking it off libcamera's list" in c.log_text(), "the log says what was done")
     c.stop()
 
 

@@ -99,7 +99,7 @@ dep_kiosk = run(["dpkg-deb", "-f", debs["candela"], "Depends"]).stdout
 dep_tool = run(["dpkg-deb", "-f", debs["candela-tool"], "Depends"]).stdout
 print("candela Depends:", dep_kiosk.strip())
 print("candela-tool Depends:", dep_tool.strip())
-for lib in ["libegl1", "libgles2", "libgbm1", "libdrm2", "libpng16-16", "libc6", "adduser", "init-system-helpers"]:
+for lib in ["libegl1", "libgles2", "libgbm1", "libdrm2", "libudev1", "libpng16-16", "libc6", "adduser", "init-system-helpers"]:
     check(re.search(r"\b%s\b" % re.escape(lib), dep_kiosk), "candela does not depend on " + lib)
 for lib in ["libavformat", "libavcodec", "libfftw3", "libeigen"]:
     check(lib not in dep_kiosk, "the kiosk package depends on %s (a tool's library)" % lib)

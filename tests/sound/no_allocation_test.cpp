@@ -2,7 +2,7 @@
 // every malloc/calloc/realloc in the process (ALSA's C code included) is
 // counted while the ALSA thread plays (ALSA's `null` device) or the
 // recording thread writes, and the test thread only pushes cues. As
-// tests/foundation/no_allocation_test.cpp does for the frame loop.
+// tests/app/no_allocation_test.cpp does for the frame loop.
 #include <gtest/gtest.h>
 
 #include <atomic>

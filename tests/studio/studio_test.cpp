@@ -304,7 +304,7 @@ TEST(Studio, ABrokenModelShowsItsErrorInTheWindow) {
 
 TEST(Studio, AStoryThatCannotBePlannedShowsWhy) {
   const std::string story =
-      std::string(CANDELA_SOURCE_DIR) + "/tests/eigenflame/data/bad-clip.story.toml";
+      std::string(CANDELA_SOURCE_DIR) + "/tests/elements/eigenflame/data/bad-clip.story.toml";
   ASSERT_EQ(
       studio("builtin:fire " + story, "badstory", "wait 2\ndump " + work("b.txt") + "\nquit\n"), 0)
       << log_text();

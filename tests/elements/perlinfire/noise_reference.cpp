@@ -1,4 +1,4 @@
-#include "perlinfire/noise_reference.h"
+#include "elements/perlinfire/noise_reference.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,9 +4,9 @@
 # test-pattern baseline. Prints one table row per run: p50/p95 frame ms, fps,
 # and CPU ms per frame (all llvmpipe threads: steadier than wall time on a
 # machine shared with other work).
-# usage: tests/perlinfire/bench-perlinfire.sh [build-dir] [frames]
+# usage: tests/elements/perlinfire/bench-perlinfire.sh [build-dir] [frames]
 set -eu
-here=$(cd "$(dirname "$0")/../.." && pwd)
+here=$(cd "$(dirname "$0")/../../.." && pwd)
 build=${1:-$here/build}
 frames=${2:-120}
 candela=$build/firmware/candela

@@ -331,7 +331,7 @@ TEST(EigenWind, GraphWalkLeansWithTheWindAndReturns) { check_wind_leans_and_retu
 TEST(EigenWind, ArpFlameBendsWithTheWindAndReturns) { check_wind_leans_and_returns("arp"); }
 
 TEST(EigenFallback, CorruptModelIsReportedAndTheDefaultPlays) {
-  const std::string dir = std::string(CANDELA_SOURCE_DIR) + "/tests/eigenflame/data";
+  const std::string dir = std::string(CANDELA_SOURCE_DIR) + "/tests/elements/eigenflame/data";
   const SceneDesc desc = load_scene_file(dir + "/bad-model.toml");
   ASSERT_EQ(desc.elements.size(), 1u);
   const auto* spec = dynamic_cast<const EigenFlameSpec*>(desc.elements[0].spec.get());
@@ -478,7 +478,7 @@ TEST(EigenStory, SceneRendersTheSameFramesForTheSameSeed) {
 // A story that cannot be planned is reported (scene key, story file, story
 // key) and the element walks the story model's graph instead: still burning.
 TEST(EigenStory, BrokenStoryIsReportedAndTheGraphWalkPlays) {
-  const std::string dir = std::string(CANDELA_SOURCE_DIR) + "/tests/eigenflame/data";
+  const std::string dir = std::string(CANDELA_SOURCE_DIR) + "/tests/elements/eigenflame/data";
   const SceneDesc desc = load_scene_file(dir + "/bad-story.toml");
   const auto* spec = dynamic_cast<const EigenFlameSpec*>(desc.elements[0].spec.get());
   ASSERT_NE(spec, nullptr);

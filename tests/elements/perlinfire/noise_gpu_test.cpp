@@ -14,7 +14,7 @@
 #include "embedded_shaders.h"
 #include "gl/program.h"
 #include "gl/texture.h"
-#include "perlinfire/noise_reference.h"
+#include "elements/perlinfire/noise_reference.h"
 
 namespace candela {
 namespace {

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Inside the virtual board (tests/kiosk/vboard_screen_power.sh runs it).
+"""Inside the virtual board (tests/app/vboard_screen_power.sh runs it).
 
 candela on vkms with a control socket: `screen off`, then `screen on`, with
 the connector's DPMS read with modetest at each stage (on an atomic driver it
