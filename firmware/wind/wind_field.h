@@ -16,9 +16,9 @@
 #include <string>
 
 #include "core/fixed.h"
-#include "core/noise_table.h"
 #include "core/random.h"
 #include "gl/math.h"
+#include "model/noise_table.h"
 
 namespace candela {
 

@@ -15,7 +15,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
-#include "core/noise_table.h"
+#include "model/noise_table.h"
 
 namespace candela {
 namespace {

@@ -6,11 +6,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 
 #include "core/error.h"
 #include "core/image.h"
 #include "field_file.h"
+#include "model/model_file.h"
+#include "model/model_writer.h"
 #include "sim_dataset.h"
 
 namespace candela::fluid {
@@ -68,7 +71,10 @@ TEST(FieldFile, RoundTripsExactly) {
   EXPECT_EQ(g.temperature.data, f.temperature.data);  // all exactly representable in float
   EXPECT_EQ(g.u.data, f.u.data);
   EXPECT_EQ(g.v.data, f.v.data);
-  EXPECT_EQ(fs::file_size(d / "a.cfld"), 48u + 15u * 4u * 3u);
+  // A container file: three 64-byte aligned tensors of 15 floats after the header.
+  const model::ModelFile file = model::ModelFile::open((d / "a.cfld").string());
+  EXPECT_EQ(file.tensors().size(), 3u);
+  EXPECT_EQ(fs::file_size(d / "a.cfld"), file.header_bytes() + 2u * 64u + 15u * 4u);
 }
 
 // Each defect is reported with the file and the field at fault.
@@ -94,20 +100,43 @@ TEST(FieldFile, DefectsNameTheFileAndField) {
       EXPECT_NE(e.key().find(field), std::string::npos) << e.what();
     }
   };
+  // The container's own checks (field names as for a model file).
+  expect_error(bytes.substr(0, 4), "header length");
+  expect_error(bytes.substr(0, bytes.size() - 4), "data");
   std::string bad = bytes;
-  bad[0] = 'X';
-  expect_error(bad, "magic");
-  bad = bytes;
-  bad[4] = 2;
-  expect_error(bad, "version");
-  expect_error(bytes.substr(0, bytes.size() - 4), "size");
-  expect_error(bytes.substr(0, 20), "header");
-  bad = bytes;
-  for (int k = 0; k < 4; ++k) bad[48 + 4 * 3 + k] = static_cast<char>(0xff);  // a NaN
-  expect_error(bad, "temperature[3]");
-  bad = bytes;
-  bad[20] = 4;
-  expect_error(bad, "flags");
+  bad[bad.size() - 1] ^= 1;
+  expect_error(bad, "__metadata__.checksum");
+  // A well-formed container that is not a good field file.
+  auto remade = [&](const std::function<void(model::ModelWriter&, nlohmann::json&)>& change) {
+    FieldFrame f = sample_frame();
+    model::ModelWriter w;
+    nlohmann::json info = {{"kind", "fluid-field"}, {"version", 1},       {"frame", 7},
+                           {"time", 0.25},          {"t_ambient", 300.0}, {"t_reference", 1800.0},
+                           {"velocity", true}};
+    std::vector<float> t(f.temperature.data.begin(), f.temperature.data.end());
+    w.add_f32("temperature", {3, 5}, t);
+    w.add_f32("u", {3, 5}, t);
+    w.add_f32("v", {3, 5}, t);
+    change(w, info);
+    w.set_info(info);
+    const auto out = w.bytes();
+    return std::string(out.begin(), out.end());
+  };
+  expect_error(remade([](auto&, auto& i) { i["kind"] = "noise-table"; }), "model.kind");
+  expect_error(remade([](auto&, auto& i) { i["version"] = 2; }), "model.version");
+  expect_error(remade([](auto&, auto& i) { i["t_reference"] = 100.0; }), "model.t_reference");
+  expect_error(remade([](auto&, auto& i) { i["velocity"] = 1; }), "model.velocity");
+  expect_error(remade([](auto&, auto& i) { i["velocity"] = false; }), "tensors");
+  expect_error(remade([](auto& w, auto&) {
+                 w.add_f32("u", {5, 3}, std::vector<float>(15));
+               }),
+               "tensor u");
+  expect_error(remade([](auto& w, auto&) {
+                 std::vector<float> t(15, 300.0f);
+                 t[3] = std::nanf("");
+                 w.add_f32("temperature", {3, 5}, t);
+               }),
+               "temperature[3]");
   EXPECT_THROW(read_field_file((d / "missing.cfld").string()), ConfigError);
 }
 

@@ -1,17 +1,13 @@
-// Per-frame simulation fields on disk ("CFLD" version 1), little-endian:
-//   offset  0  char[4]  "CFLD"
-//           4  uint32   version (1)
-//           8  uint32   width  (cells, 1..8192)
-//          12  uint32   height (cells, 1..8192)
-//          16  uint32   frame index
-//          20  uint32   flags (bit 0: velocity follows the temperature)
-//          24  float64  time (s)
-//          32  float64  ambient temperature (K)
-//          40  float64  reference temperature (K): maps to full brightness
-//          48  float32  temperature[width*height] (K), row 0 = BOTTOM row
-//          ..  float32  u[width*height], v[width*height] (cells/s, cell
-//                       centres, v > 0 = up), only when flags bit 0 is set
-// The file size must match exactly; every value must be finite.
+// Per-frame simulation fields on disk: a Candela container file
+// (model/model_file.h: JSON header, 64-byte aligned tensors, CRC-32), read by
+// the same reader as models and noise tables.
+//   tensor "temperature"  F32 [height, width] (K), row 0 = BOTTOM row
+//   tensors "u", "v"      F32 [height, width] (cells/s, cell centres,
+//                         v > 0 = up), only when "velocity" is true
+//   "model" info          {"kind": "fluid-field", "version": 1, "frame": index,
+//                          "time": s, "t_ambient": K, "t_reference": K (maps to
+//                          full brightness), "velocity": bool}
+// Width and height are 1..8192 cells; every value must be finite.
 #pragma once
 
 #include <cstdint>
@@ -33,7 +29,8 @@ struct FieldFrame {
 
 // Atomic (temporary file + rename). Throws RuntimeError when it cannot write.
 void write_field_file(const std::string& path, const FieldFrame& frame);
-// Throws ConfigError(path, field, what was expected) on any defect.
+// Throws ConfigError(path, field, what was expected) on any defect
+// (model::ModelError for the container's framing and checksum).
 FieldFrame read_field_file(const std::string& path);
 
 }  // namespace candela::fluid

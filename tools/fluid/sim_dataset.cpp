@@ -40,7 +40,7 @@ void write_manifest(const std::string& dir, const SimManifest& m) {
   toml::table manifest{{"clip", std::move(clip)}};
   if (m.has_fields)
     manifest.insert("fields", toml::table{{"pattern", "fields/field_%06d.cfld"},
-                                          {"format", "CFLD 1"},
+                                          {"format", "fluid-field 1"},
                                           {"width", m.grid_width},
                                           {"height", m.grid_height},
                                           {"t_ambient", m.t_ambient},

@@ -79,7 +79,14 @@ int run_noise_command(int argc, char** argv, const char* program) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  if (!analyze_path.empty()) return analyze(analyze_path);
+  if (!analyze_path.empty()) {
+    try {
+      return analyze(analyze_path);
+    } catch (const ConfigError& e) {  // a bad table: say which field, do not abort
+      std::fprintf(stderr, "%s: %s\n", program, e.what());
+      return 2;
+    }
+  }
   if (out.empty()) {
     std::fprintf(stderr, "%s: --out FILE is required (or --analyze FILE)\n", program);
     return 2;

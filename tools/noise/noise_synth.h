@@ -1,13 +1,13 @@
 // 1/f^beta noise by spectral synthesis (Peitgen & Saupe), the offline half
 // of the noise tables: FFTW does the inverse transform; the runtime only
-// reads the quantised result (core/noise_table.h).
+// reads the quantised result (model/noise_table.h).
 #pragma once
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
-#include "core/noise_table.h"
+#include "model/noise_table.h"
 
 namespace candela::noise {
 

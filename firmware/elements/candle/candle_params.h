@@ -11,7 +11,7 @@
 
 #include "core/fixed.h"
 #include "core/image.h"
-#include "core/noise_table.h"
+#include "model/noise_table.h"
 
 namespace candela {
 

@@ -1,13 +1,14 @@
 // Noise tables: the synthesis (tools/noise) and the runtime reader
-// (core/noise_table): spectra, wrap, gust shape, determinism, validation.
+// (model/noise_table): spectra, wrap, gust shape, determinism, validation.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
 #include "core/error.h"
-#include "core/noise_table.h"
 #include "embedded_noise_tables.h"
+#include "model/model_writer.h"
+#include "model/noise_table.h"
 #include "noise/noise_synth.h"
 
 namespace candela {
@@ -86,23 +87,46 @@ TEST(NoiseTable, RejectsBrokenFilesNamingTheField) {
     return "accepted";
   };
   EXPECT_EQ(field_of(good), "accepted");
-  EXPECT_EQ(field_of(good.substr(0, 20)), "header");
+  // The table is a container file (model/model_file.h): framing, header and
+  // checksum faults are the container reader's, named as for a model.
+  EXPECT_EQ(field_of(good.substr(0, 5)), "header length");
+  EXPECT_EQ(field_of(good.substr(0, 100)), "header");
+  EXPECT_EQ(field_of(good + "xx"), "data");
   std::string b = good;
-  b[0] = 'X';
-  EXPECT_EQ(field_of(b), "magic");
-  b = good;
-  b[8] = 2;
-  EXPECT_EQ(field_of(b), "version");
-  b = good;
-  b[12] = 65;  // 65 samples: not a power of two
-  EXPECT_EQ(field_of(b), "length");
-  b = good;
-  b[20] = 4;
-  EXPECT_EQ(field_of(b), "flags");
-  EXPECT_EQ(field_of(good + "xx"), "samples");
-  b = good;
-  b[NoiseTable::kHeaderBytes + 10] ^= 1;
-  EXPECT_EQ(field_of(b), "checksum");
+  b[good.size() - 10] ^= 1;
+  EXPECT_EQ(field_of(b), "__metadata__.checksum");
+  // What only a noise table checks, in a well-formed container.
+  auto remade = [&](nlohmann::json info, std::vector<uint16_t> samples) {
+    model::ModelWriter w;
+    w.set_info(std::move(info));
+    w.add("samples", model::DType::kU16, {static_cast<int64_t>(samples.size())},
+          {reinterpret_cast<const uint8_t*>(samples.data()), 2 * samples.size()});
+    const auto out = w.bytes();
+    return std::string(out.begin(), out.end());
+  };
+  const nlohmann::json info = {
+      {"kind", "noise-table"}, {"version", 1}, {"beta_milli", 2000}, {"gust", false}, {"seed", 5}};
+  const std::vector<uint16_t> samples(t.samples().begin(), t.samples().end());
+  EXPECT_EQ(field_of(remade(info, samples)), "accepted");
+  auto with = [&](const char* key, nlohmann::json v) {
+    nlohmann::json i = info;
+    i[key] = std::move(v);
+    return remade(i, samples);
+  };
+  EXPECT_EQ(field_of(with("kind", "eigenfires")), "model.kind");
+  EXPECT_EQ(field_of(with("version", 2)), "model.version");
+  EXPECT_EQ(field_of(with("beta_milli", 20000)), "model.beta_milli");
+  EXPECT_EQ(field_of(with("gust", 4)), "model.gust");
+  EXPECT_EQ(field_of(with("seed", -1)), "model.seed");
+  EXPECT_EQ(field_of(remade(info, std::vector<uint16_t>(65, 0))), "length");
+  EXPECT_EQ(field_of(remade(info, std::vector<uint16_t>(8, 0))), "length");
+  try {
+    NoiseTable::parse(with("kind", "eigenfires"), "x.cnoise");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(),
+                 "x.cnoise: model.kind: expected \"noise-table\" (a candela-tool noise table)");
+  }
   try {
     NoiseTable::load("/nonexistent/table.cnoise");
     FAIL();

@@ -2,16 +2,14 @@
 // Samples are Q0.16 fractions of [0, 1]; reading interpolates in integers,
 // so a table and a position give the same value on every machine.
 //
-// File layout (little-endian), version 1:
-//   0  char[8]  magic "CNDLNOIS"
-//   8  u32      version (1)
-//  12  u32      length: samples, a power of two in [16, 65536]
-//  16  i32      beta * 1000 (what it was made with; informational)
-//  20  u32      flags: bit 0 = gust table (minimum moved to index 0)
-//  24  u64      seed
-//  32  u32      FNV-1a 32 of the sample bytes
-//  36  u32      reserved, 0
-//  40  u16[length] samples
+// A table is a Candela container file (model/model_file.h: JSON header,
+// 64-byte aligned tensors, CRC-32), read by the same reader as a model:
+//   tensor "samples"  U16 [length], length a power of two in [16, 65536]
+//   "model" info      {"kind": "noise-table", "version": 1,
+//                      "beta_milli": beta * 1000 (what it was made with),
+//                      "gust": true when the minimum was moved to index 0,
+//                      "seed": the synthesis seed}
+// The samples are copied out once at load; reading them allocates nothing.
 #pragma once
 
 #include <cstdint>
@@ -35,17 +33,17 @@ struct NoiseTableInfo {
 class NoiseTable {
  public:
   static constexpr uint32_t kVersion = 1;
-  static constexpr size_t kHeaderBytes = 40;
+  static constexpr const char* kKind = "noise-table";
   static constexpr uint32_t kMinLength = 16;
   static constexpr uint32_t kMaxLength = 65536;
 
   NoiseTable() = default;
-  // Validates everything; throws ConfigError(source, field, what was expected).
+  // Validates everything; throws ConfigError(source, field, what was expected)
+  // (model::ModelError for the container's framing and checksum).
   static NoiseTable parse(std::string_view bytes, const std::string& source);
   static NoiseTable load(const std::string& path);
   // The file's bytes for a table (length must be valid).
   static std::string serialize(const NoiseTableInfo& info, std::span<const uint16_t> samples);
-  static uint32_t checksum(std::span<const uint16_t> samples);
 
   const NoiseTableInfo& info() const { return info_; }
   uint32_t length() const { return info_.length; }
