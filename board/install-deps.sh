@@ -46,6 +46,8 @@ tests=(
   # virtual board (board/virtual): QEMU + Debian kernel + out-of-tree drivers
   qemu-system-x86 busybox-static cpio kmod gzip xz-utils bc flex bison libelf-dev
   v4l-utils libdrm-tests
+  # ALSA on the virtual board (board_sound_aloop): arecord on snd-aloop
+  alsa-utils
   # libgpiod 2 check (board/libgpiod2/build.sh): Debian 13's source through apt
   gpgv debian-archive-keyring
   # libcamera on the board's vimc: `cam`, and udevd (libcamera enumerates through udev)

@@ -150,12 +150,13 @@ int main(int argc, char** argv) {
   try {
     auto display = open_display(opt.display);
     // Headless writing frames: the sound goes beside them (muxed into a
-    // video); a screen: ALSA. Headless without --out: no sound.
+    // video); a screen, or headless --realtime without --out (a board heard,
+    // not seen): ALSA. Headless otherwise: no sound.
     std::unique_ptr<SoundOutput> sound;
     if (sound_on) {
       const uint64_t seed =
           desc.sound.seed ? desc.sound.seed : (opt.seed ? opt.seed : desc.seed) ^ 0x736f756e64ULL;
-      if (display->name() != "headless") {
+      if (display->name() != "headless" || (opt.realtime && opt.display.out_path.empty())) {
         sound = open_sound_device(desc.sound, desc.steps_per_second, seed);
       } else if (!opt.display.out_path.empty()) {
         sound =

@@ -73,9 +73,11 @@ int parse_options(int argc, char** argv, Options& o) {
                  "Frame rate of written video; headless animation advances 1/fps per frame")
       ->check(CLI::Range(1, 240));
   app.add_option("--seed", seed, "Random seed, 1 to 2^63-1 (default: the scene's)");
-  app.add_flag("--realtime", o.realtime,
-               "Headless: hold --fps by the wall clock and animate in real time, like a screen "
-               "(default: as fast as possible, one step per frame)");
+  app.add_flag(
+      "--realtime", o.realtime,
+      "Headless: hold --fps by the wall clock and animate in real time, like a screen "
+      "(default: as fast as possible, one step per frame); without --out a scene's [sound] "
+      "plays through ALSA");
   app.add_flag("--mute", o.mute,
                "No sound, whatever the scene's [sound] says (no ALSA device, no .wav)");
   app.add_flag("--bench", o.bench, "Print frame-time statistics as one JSON line after the run");
