@@ -5,7 +5,7 @@
 # script, not a ctest: the VM is emulated (TCG), so frames are few a second
 # and the figures that matter are memory and survival, not frame rate.
 # Prints one line a minute and a verdict:
-#   minute  rss_mb  frames (from the kiosk's state)
+#   minute  rss_mb  frame (the kiosk's state: frames drawn so far)
 #   rss first/last/max after the first minute; PASS when the last is within
 #   --rss-mb (default 1) of the first and candela was still running.
 #   tests/bench/vboard_realtime.sh [--build build] [--minutes 60] [--rss-mb 1] [--scene FILE]
@@ -41,7 +41,7 @@ trap 'rm -rf "$out"' EXIT
     sleep 60
     if ! kill -0 \$pid 2>/dev/null; then echo \"minute \$m: candela exited\"; break; fi
     rss=\$(awk '/^VmRSS/ {print \$2}' /proc/\$pid/status)
-    frames=\$(/usr/bin/python3 -c \"import json, socket; s = socket.socket(socket.AF_UNIX); s.settimeout(5); s.connect('\$sock'); s.sendall(b'state\\\\n'); print(json.loads(s.makefile().readline()).get('frames', '?'))\" 2>/dev/null)
+    frames=\$(/usr/bin/python3 -c \"import json, socket; s = socket.socket(socket.AF_UNIX); s.settimeout(5); s.connect('\$sock'); s.sendall(b'state\\\\n'); print(json.loads(s.makefile().readline()).get('frame', '?'))\" 2>/dev/null)
     echo \"sample \$m \$rss \${frames:-?}\"
   done
   alive=0; kill -0 \$pid 2>/dev/null && alive=1
@@ -50,6 +50,7 @@ trap 'rm -rf "$out"' EXIT
   for c in \$VBOARD_OUT/core*; do
     [ -f \"\$c\" ] && gdb -q -batch -ex 'thread apply all bt 12' $candela \"\$c\" 2>&1 | grep -v '^\\[New LWP' | tail -80
   done
+  true
 " | tee "$out/log.txt"
 
 /usr/bin/python3 - "$out/log.txt" "$rss_mb" <<'PY'
