@@ -31,6 +31,8 @@ paho-mqtt (Debian `python3-paho-mqtt`).
                 the origin ignores its own, nobody re-publishes, the one without
                 [room] hears nothing; a bad message is logged and dropped, a late one
                 is started at once
+  bench         (not run by ctest) the round trips on loopback: the broker's echo, and
+                a set/brightness to candela's reply and to its state reporting it
 """
 import json, os, queue, select, shutil, signal, socket, subprocess, sys, tempfile, time
 
@@ -671,8 +673,55 @@ def case_room():
         check(stop_candela(ps[n]) == 0, n + " exits 0")
 
 
+def case_bench():
+    """Not a test (ctest does not run it): the MQTT round trips on loopback.
+    broker: a message published and received back by one client (QoS 0);
+    command: set/brightness published until candela's reply "ok" arrives, and
+    until its state topic reports the new value (its MQTT thread, the frame
+    loop at 60 fps, and back)."""
+    port = free_port()
+    Broker(port)
+    client = Client(port)
+
+    def spread(xs):
+        xs = sorted(xs)
+        return xs[len(xs) // 2] * 1e3, xs[int(len(xs) * 0.95)] * 1e3
+
+    broker = []
+    for i in range(300):
+        t = time.perf_counter()
+        client.c.publish(PREFIX + "/echo", str(i), qos=0)
+        if client.wait(PREFIX + "/echo", lambda x, i=i: x == str(i), timeout=5) is None:
+            check(False, "the broker echoes message %d" % i)
+            return
+        broker.append(time.perf_counter() - t)
+    p = start_candela(write_config(port))
+    check(client.wait(PREFIX + "/availability", lambda x: x == "online") is not None, "candela online")
+    reply, state = [], []
+    for i in range(60):
+        level = 0.3 + 0.01 * (i % 50)
+        t = time.perf_counter()
+        client.send("brightness", "%.2f" % level)
+        ok = client.wait(PREFIX + "/reply", lambda x: x == "ok", timeout=10) is not None
+        reply.append(time.perf_counter() - t)
+        ok = ok and client.wait(PREFIX + "/state",
+                                lambda x, level=level: abs(json.loads(x)["brightness"] - level) < 1e-6,
+                                timeout=10) is not None
+        state.append(time.perf_counter() - t)
+        if not ok:
+            check(False, "brightness %.2f answered and reported" % level)
+            break
+    b50, b95 = spread(broker)
+    r50, r95 = spread(reply)
+    s50, s95 = spread(state)
+    print("mqtt round trip on loopback (ms): broker p50 %.2f p95 %.2f; "
+          "candela reply p50 %.2f p95 %.2f (%.0fx the broker's); state p50 %.2f p95 %.2f"
+          % (b50, b95, r50, r95, r50 / b50, s50, s95))
+    check(stop_candela(p) == 0, "candela exits 0")
+
+
 try:
-    {"room": case_room, "commands": case_commands, "reconnect": case_reconnect, "absent": case_absent,
+    {"bench": case_bench, "room": case_room, "commands": case_commands, "reconnect": case_reconnect, "absent": case_absent,
      "password": case_password, "off": case_off, "config": case_config,
      "silent": case_silent, "retained": case_retained, "tls": case_tls}[CASE]()
 finally:
