@@ -12,6 +12,9 @@
                it, the last second of the .wav is 0.1/0.6 as loud as the same render
                without it (same seed, same samples before the change), and the change
                glides (no sample-to-sample jump larger than the fire's own)
+  scheduled_volume  a [schedule] with night_volume = 0.3 (the kiosk config, --clock-start):
+               a render at 23:00 is 0.3 as loud as the same render at 12:00 (same
+               seed: the same samples scaled), and neither is silent
 """
 import array, json, math, os, shutil, signal, socket, subprocess, sys, tempfile, time, wave
 
@@ -160,8 +163,26 @@ def case_volume_socket():
               "(%d vs %d in the reference)" % (glide, before))
 
 
+def case_scheduled_volume():
+    # On all day but 05:00-06:00 (never off during the render: an off screen
+    # draws no frames), no fades, quieter from 22:00.
+    config = os.path.join(WORK, "candela.toml")
+    with open(config, "w") as f:
+        f.write('[schedule]\ndaily = "06:00-05:00"\nfade_in = 0\nfade_out = 0\n'
+                'night = "22:00-02:00"\nnight_level = 0.4\nnight_volume = 0.3\n')
+    level = {}
+    for at in ("12:00", "23:00"):
+        out = os.path.join(WORK, "at%s.y4m" % at.replace(":", ""))
+        r = render(out, 90, "--seed", "3", "--config", config, "--clock-start", "2026-12-07T" + at)
+        check(r.returncode == 0, "render at %s exits 0" % at, r.stderr)
+        level[at] = rms(read_wav(out[:-len(".y4m")] + ".wav"))
+    check(level["12:00"] > 0.01, "the day's fire is heard (RMS %.4f)" % level["12:00"])
+    ratio = level["23:00"] / max(level["12:00"], 1e-9)
+    check(abs(ratio - 0.3) < 0.02, "at night the sound is 0.3 as loud (%.3f)" % ratio)
+
+
 try:
-    {"wav_beside": case_wav_beside, "mp4_sound": case_mp4_sound, "signal_mp4": case_signal_mp4,
+    {"scheduled_volume": case_scheduled_volume, "wav_beside": case_wav_beside, "mp4_sound": case_mp4_sound, "signal_mp4": case_signal_mp4,
      "volume_socket": case_volume_socket}[CASE]()
 finally:
     shutil.rmtree(WORK, ignore_errors=True)
