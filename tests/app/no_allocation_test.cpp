@@ -25,6 +25,25 @@ namespace {
 const char* const kScenes[] = {"test-pattern", "default", "eigen-fireplace", "eigen-candle",
                                "eigen-story"};
 
+// Plays systemd for the frame loop: an abstract datagram socket (no file
+// left behind) named in NOTIFY_SOCKET, with a 2 us watchdog (a ping every
+// frame). Returns the socket to read the notifications from, or -1.
+int listen_as_systemd(const std::string& name) {
+  const int rx = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (rx < 0) return -1;
+  sockaddr_un a{};
+  a.sun_family = AF_UNIX;
+  std::memcpy(a.sun_path + 1, name.data(), name.size());
+  if (bind(rx, reinterpret_cast<sockaddr*>(&a),
+           static_cast<socklen_t>(offsetof(sockaddr_un, sun_path) + 1 + name.size())) != 0) {
+    close(rx);
+    return -1;
+  }
+  setenv("NOTIFY_SOCKET", ("@" + name).c_str(), 1);
+  setenv("WATCHDOG_USEC", "2", 1);
+  return rx;
+}
+
 TEST(FrameLoop, NoHeapAllocationPerFrame) {
 #if defined(__SANITIZE_ADDRESS__)
   // ASan replaces operator new itself, and Mesa's LLVM then frees our blocks
@@ -59,17 +78,8 @@ TEST(FrameLoop, NoHeapAllocationWithSystemdNotify) {
 #if defined(__SANITIZE_ADDRESS__)
   GTEST_SKIP() << "allocation counting needs the plain allocator";
 #endif
-  const std::string name = "candela-alloc-test-" + std::to_string(getpid());
-  const int rx = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  const int rx = listen_as_systemd("candela-alloc-test-" + std::to_string(getpid()));
   ASSERT_GE(rx, 0);
-  sockaddr_un a{};
-  a.sun_family = AF_UNIX;
-  std::memcpy(a.sun_path + 1, name.data(), name.size());  // abstract: no file left behind
-  ASSERT_EQ(bind(rx, reinterpret_cast<sockaddr*>(&a),
-                 static_cast<socklen_t>(offsetof(sockaddr_un, sun_path) + 1 + name.size())),
-            0);
-  setenv("NOTIFY_SOCKET", ("@" + name).c_str(), 1);
-  setenv("WATCHDOG_USEC", "2", 1);
   DisplayOptions o;
   o.kind = "headless";
   o.width = 160;
@@ -131,17 +141,8 @@ class ScreenLaterDisplay final : public Display {
 };
 
 TEST(FrameLoop, WaitsForAScreenThenDraws) {
-  const std::string name = "candela-screen-test-" + std::to_string(getpid());
-  const int rx = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  const int rx = listen_as_systemd("candela-screen-test-" + std::to_string(getpid()));
   ASSERT_GE(rx, 0);
-  sockaddr_un a{};
-  a.sun_family = AF_UNIX;
-  std::memcpy(a.sun_path + 1, name.data(), name.size());
-  ASSERT_EQ(bind(rx, reinterpret_cast<sockaddr*>(&a),
-                 static_cast<socklen_t>(offsetof(sockaddr_un, sun_path) + 1 + name.size())),
-            0);
-  setenv("NOTIFY_SOCKET", ("@" + name).c_str(), 1);
-  setenv("WATCHDOG_USEC", "2", 1);
   DisplayOptions o;
   o.kind = "headless";
   o.width = 160;

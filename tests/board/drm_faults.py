@@ -30,7 +30,7 @@ import time
 # check(), wait_for() and FAILED: tests/support/checks.py
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
 from checks import FAILED, check, wait_for  # noqa: E402
-from drm_query import crtc_state, first_crtc, start_candela_on_drm  # noqa: E402
+from drm_query import CandelaOnDrm, crtc_state, first_crtc  # noqa: E402
 
 CANDELA = sys.argv[1]
 CARD = "/dev/dri/card0"
@@ -96,15 +96,8 @@ def take_master_from(pid):
 def run(legacy):
     print("=== %s" % ("legacy modesetting" if legacy else "atomic modesetting"), flush=True)
     log_path = os.path.join(WORK, "candela-%s.log" % ("legacy" if legacy else "atomic"))
-    proc = start_candela_on_drm(CANDELA, log_path, dict(CANDELA_DRM_LEGACY="1" if legacy else "0"))
-
-    def log_text():
-        return open(log_path).read()
-
-    def alive():
-        if proc.poll() is not None:
-            raise AssertionError("candela exited (%d):\n%s" % (proc.returncode, log_text()))
-        return True
+    candela = CandelaOnDrm(CANDELA, log_path, dict(CANDELA_DRM_LEGACY="1" if legacy else "0"))
+    proc, log_text, alive = candela.proc, candela.log_text, candela.alive
 
     fds = {}
     try:

@@ -28,7 +28,7 @@ import tempfile
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
 from checks import check, run_case, wait_for  # noqa: E402
-from drm_query import crtc_state, first_crtc, start_candela_on_drm  # noqa: E402
+from drm_query import CandelaOnDrm, crtc_state, first_crtc  # noqa: E402
 
 CANDELA = sys.argv[1]
 CARD = "/dev/dri/card0"
@@ -65,16 +65,9 @@ def case_hotplug():
         return [m for m in messages if pred(m)]
 
     log_path = os.path.join(WORK, "candela.log")
-    proc = start_candela_on_drm(CANDELA, log_path,
+    candela = CandelaOnDrm(CANDELA, log_path,
                                 dict(NOTIFY_SOCKET=sock_path, WATCHDOG_USEC="400000"))
-
-    def log_text():
-        return open(log_path).read()
-
-    def alive():
-        if proc.poll() is not None:
-            raise AssertionError("candela exited (%d):\n%s" % (proc.returncode, log_text()))
-        return True
+    proc, log_text, alive = candela.proc, candela.log_text, candela.alive
 
     def fbs_seen(want, timeout):
         seen = set()

@@ -1,6 +1,6 @@
-"""What the kernel shows on a DRM device, read with ioctls (for the virtual
-board's tests: no libdrm binding needed): the first CRTC and its framebuffer
-and mode."""
+"""For the virtual board's DRM tests: what the kernel shows on a DRM device,
+read with ioctls (no libdrm binding needed: the first CRTC, its framebuffer
+and mode), and candela started on it as a kiosk runs it."""
 import ctypes
 import fcntl
 import struct
@@ -31,16 +31,29 @@ def crtc_state(fd, crtc):
     return fb, hdisplay, vdisplay
 
 
-def start_candela_on_drm(candela, log_path, extra_env, args=("--test-pattern", "--size", "640x480")):
+class CandelaOnDrm:
     """candela on the DRM display as a kiosk runs it: an unprivileged user in
-    the video (and render, where it exists) group, no capabilities; output to
-    log_path. Returns the process."""
-    import os
-    import subprocess
-    groups = "video,render" if subprocess.run(["getent", "group", "render"],
-                                              capture_output=True).returncode == 0 else "video"
-    env = dict(os.environ, HOME="/tmp", XDG_CACHE_HOME="/tmp", **extra_env)
-    with open(log_path, "w") as log:
-        return subprocess.Popen(["setpriv", "--reuid=65534", "--regid=65534", "--groups=" + groups,
-                                 "--inh-caps=-all", candela, "--display", "drm", *args],
-                                stdout=log, stderr=subprocess.STDOUT, env=env)
+    the video (and render, where it exists) group, no capabilities; its output
+    in log_path."""
+
+    def __init__(self, candela, log_path, extra_env, args=("--test-pattern", "--size", "640x480")):
+        import os
+        import subprocess
+        groups = "video,render" if subprocess.run(["getent", "group", "render"],
+                                                  capture_output=True).returncode == 0 else "video"
+        env = dict(os.environ, HOME="/tmp", XDG_CACHE_HOME="/tmp", **extra_env)
+        self.log_path = log_path
+        with open(log_path, "w") as log:
+            self.proc = subprocess.Popen(["setpriv", "--reuid=65534", "--regid=65534",
+                                          "--groups=" + groups, "--inh-caps=-all", candela,
+                                          "--display", "drm", *args],
+                                         stdout=log, stderr=subprocess.STDOUT, env=env)
+
+    def log_text(self):
+        return open(self.log_path).read()
+
+    def alive(self):
+        """True while it runs; raises with its log once it has exited."""
+        if self.proc.poll() is not None:
+            raise AssertionError("candela exited (%d):\n%s" % (self.proc.returncode, self.log_text()))
+        return True
