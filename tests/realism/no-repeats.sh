@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # No visible loop: renders a built-in scene for MINUTES of animation time
-# (default 10; $REPEAT_MINUTES) headless at 64x36 and 15 fps ($REPEAT_FPS) -- the whole
+# (default 10; $REPEAT_MINUTES) headless at 64x36 and 15 fps -- the whole
 # picture, small, since a repeat shows at any size -- and fails when
 # `candela-tool measure repeats` finds a stretch longer than 2 s that matches
 # an earlier one (frames whose mean difference is under a fifth of the median
@@ -12,7 +12,7 @@ set -euo pipefail
 scene=${1:?usage: no-repeats.sh SCENE.toml [SEED]}
 seed=${2:-1}
 minutes=${REPEAT_MINUTES:-10}
-fps=${REPEAT_FPS:-15}
+fps=15
 limit_s=2
 frames=$((minutes * 60 * fps))
 need_tools

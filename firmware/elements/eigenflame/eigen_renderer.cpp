@@ -71,9 +71,7 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 
-  const std::string defines = "#define MAX_VEC4 " + std::to_string(coef_.size() / 4) + "\n" +
-                              (layout == StackLayout::kLayered ? "#define LAYERED\n" : "");
-  full_ = ReconstructProgram(defines);
+  full_ = ReconstructProgram(program_defines());
   target_ = RenderTarget::checked(width_, height_, "eigenflame: reconstruction");
   vao_ = make_vertex_array();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -94,6 +92,11 @@ EigenReconstructor::ReconstructProgram::ReconstructProgram(const std::string& de
       cache(program.uniform("u_cache")),
       frame(program.uniform("u_frame")) {}
 
+std::string EigenReconstructor::program_defines() const {
+  return "#define MAX_VEC4 " + std::to_string(coef_.size() / 4) + "\n" +
+         (layered_ ? "#define LAYERED\n" : "");
+}
+
 void EigenReconstructor::draw_at(std::span<const float> weights, int x, int y) {
   draw_with(full_, weights, nullptr, -1, x, y);
 }
@@ -107,8 +110,7 @@ void EigenReconstructor::draw_with(const ReconstructProgram& p, std::span<const 
   const int n = std::min(components_, static_cast<int>(weights.size()));
   coef_[0] = base ? 0.0f : mean_scale_;
   float bias = base ? 0.0f : mean_offset_;
-  int last = components_;  // entries summed after the mean
-  if (base) last = 0;
+  int last = base ? 0 : components_;  // entries summed after the mean
   for (int k = 0; k < components_; ++k) {
     const float w = (k < n ? weights[static_cast<size_t>(k)] : 0.0f) - (base ? base[k] : 0.0f);
     coef_[static_cast<size_t>(k) + 1] = w * eigen_scale_[static_cast<size_t>(k)];
@@ -158,10 +160,8 @@ bool EigenReconstructor::enable_cache(std::span<const float> frame_weights, int 
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   cache_fbo_ = make_framebuffer();
-  const std::string defines = "#define MAX_VEC4 " + std::to_string(coef_.size() / 4) + "\n" +
-                              (layered_ ? "#define LAYERED\n" : "");
-  fill_ = ReconstructProgram(defines + "#define TO_CACHE\n");
-  near_ = ReconstructProgram(defines + "#define FROM_CACHE\n");
+  fill_ = ReconstructProgram(program_defines() + "#define TO_CACHE\n");
+  near_ = ReconstructProgram(program_defines() + "#define FROM_CACHE\n");
   cached_.assign(static_cast<size_t>(frames), false);
   cache_weights_ = frame_weights;
   cache_stride_ = stride;

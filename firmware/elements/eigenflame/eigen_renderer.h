@@ -96,6 +96,8 @@ class EigenReconstructor {
   // layer), or null for the full sum.
   void draw_with(const ReconstructProgram& p, std::span<const float> weights, const float* base,
                  int frame, int x, int y);
+  // The shader's defines for this stack (its uniform array size, its layout).
+  std::string program_defines() const;
 
   int width_, height_, components_, entries_, layers_;
   bool layered_;
