@@ -57,7 +57,8 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
   float level = kiosk ? kiosk->target_level() : 1.0f;  // the brightness shown, gliding
   float fade_left_s = 0.0f;                            // of the cross-fade
   bool screen_on = true;
-  bool screen_present = true;  // the display has somewhere to show frames
+  bool screen_present = true;    // the display has somewhere to show frames
+  int shown_w = 0, shown_h = 0;  // the size the kiosk was last told frames are drawn at
   uint64_t fps_frames = 0;
   auto fps_since = Clock::now();
 
@@ -149,8 +150,12 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
       // loop alive (watchdog pings) and waiting on the display's uevents.
       if (s.inputs) s.inputs->drain(scene->wind());
       if (s.notify) s.notify->idle(Clock::now(), "waiting for a screen");
-      if (kiosk && screen_present) kiosk->set_fps(0.0f);
+      if (kiosk && screen_present) {
+        kiosk->set_fps(0.0f);
+        kiosk->set_output(Kiosk::Output::kWaiting, shown_w, shown_h);
+      }
       screen_present = false;
+      shown_w = shown_h = 0;  // told again once a screen is there
       display.wait_for_screen(250);
       continue;
     }
@@ -201,6 +206,11 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
     last_present = end;
     ++result.frames;
     if (kiosk) {
+      if (frame.width != shown_w || frame.height != shown_h) {  // first, or a new mode
+        shown_w = frame.width;
+        shown_h = frame.height;
+        kiosk->set_output(Kiosk::Output::kDrawing, shown_w, shown_h);
+      }
       ++fps_frames;
       const double window = std::chrono::duration<double>(end - fps_since).count();
       if (window >= 1.0) {

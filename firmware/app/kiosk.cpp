@@ -173,6 +173,14 @@ KioskStatus Kiosk::status() const {
   s.brightness = brightness_.load(std::memory_order_relaxed);
   s.screen_on = screen_on();
   s.fps = fps_.load(std::memory_order_relaxed);
+  const auto output = static_cast<Output>(output_.load(std::memory_order_acquire));
+  const int64_t size = output_size_.load(std::memory_order_relaxed);
+  s.width = static_cast<int>(size >> 32);
+  s.height = static_cast<int>(static_cast<uint32_t>(size));
+  s.display = !s.screen_on                 ? "off"
+              : output == Output::kDrawing ? "drawing"
+              : output == Output::kWaiting ? "waiting"
+                                           : "starting";
   return s;
 }
 

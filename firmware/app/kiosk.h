@@ -16,6 +16,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -93,6 +94,13 @@ class Kiosk final : public KioskControl {
   // After building what take_scene() gave: empty, or why it failed.
   void scene_built(const std::string& error);
   void set_fps(float fps) { fps_.store(fps, std::memory_order_relaxed); }
+  // Where the frames go (status().display): the loop reports each change.
+  enum class Output : int { kStarting, kDrawing, kWaiting };
+  void set_output(Output o, int width, int height) {
+    output_size_.store(static_cast<int64_t>(width) << 32 | static_cast<uint32_t>(height),
+                       std::memory_order_relaxed);
+    output_.store(static_cast<int>(o), std::memory_order_release);
+  }
   // Screen off: sleeps until a command wakes the loop or `ms` pass.
   void wait_for_wake(int ms) const;
 
@@ -117,7 +125,9 @@ class Kiosk final : public KioskControl {
   SdNotify* notify_;
   std::atomic<bool> screen_on_{true};
   std::atomic<float> brightness_{1.0f}, schedule_level_{1.0f}, schedule_volume_{1.0f}, fps_{0.0f};
-  mutable std::mutex mu_;  // label_, schedule, the scene hand-over
+  std::atomic<int> output_{0};           // Output
+  std::atomic<int64_t> output_size_{0};  // width << 32 | height
+  mutable std::mutex mu_;                // label_, schedule, the scene hand-over
   std::condition_variable built_cv_;
   std::string label_;
   std::string config_scene_;  // the config's (or command line's) scene: outside schedule ranges

@@ -388,9 +388,7 @@ class DrmDisplay final : public Display {
         LOG_INFO("drm: a hot-plug event on %s: still %s", out_.device.c_str(), why.c_str());
       return;
     }
-    if (screen_ && out_.connector_id == old_connector &&
-        std::memcmp(&out_.mode, &old_mode, sizeof old_mode) == 0)
-      return;
+    if (!needs_new_mode(screen_, old_connector, old_mode, out_.connector_id, out_.mode)) return;
     if (screen_) screen_gone();  // another connector or mode: set up afresh
     take_mode(true);
   }

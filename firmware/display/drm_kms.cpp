@@ -134,37 +134,6 @@ int pick_crtc(int fd, const drmModeRes& res, const drmModeConnector& conn, uint3
   return -1;
 }
 
-const drmModeModeInfo* pick_mode(const drmModeConnector& conn, const DisplayOptions& o,
-                                 const std::string& name) {
-  const drmModeModeInfo* preferred = &conn.modes[0];
-  for (int i = 0; i < conn.count_modes; ++i)
-    if (conn.modes[i].type & DRM_MODE_TYPE_PREFERRED) {
-      preferred = &conn.modes[i];
-      break;
-    }
-  if (o.width <= 0 && o.refresh_hz <= 0) return preferred;
-  const int want_w = o.width > 0 ? o.width : preferred->hdisplay;
-  const int want_h = o.height > 0 ? o.height : preferred->vdisplay;
-  const drmModeModeInfo* best = nullptr;
-  for (int i = 0; i < conn.count_modes; ++i) {
-    const drmModeModeInfo& m = conn.modes[i];
-    if (m.hdisplay != want_w || m.vdisplay != want_h) continue;
-    if (o.refresh_hz > 0 && static_cast<int>(m.vrefresh) != o.refresh_hz) continue;
-    if (m.flags & DRM_MODE_FLAG_INTERLACE) continue;
-    // Among equals the preferred one, else the highest refresh.
-    if (!best || (m.type & DRM_MODE_TYPE_PREFERRED) ||
-        (!(best->type & DRM_MODE_TYPE_PREFERRED) && m.vrefresh > best->vrefresh))
-      best = &m;
-  }
-  if (best) return best;
-  // Appended, not "@" + string: GCC 12's -Wrestrict misfires on that at -O3.
-  std::string rate;
-  if (o.refresh_hz > 0) rate.append("@").append(std::to_string(o.refresh_hz));
-  LOG_WARN("drm: %s has no mode %dx%d%s; using its preferred mode %s", name.c_str(), want_w, want_h,
-           rate.c_str(), describe_mode(*preferred).c_str());
-  return preferred;
-}
-
 // The modifiers the plane's IN_FORMATS blob lists for `format`.
 std::vector<uint64_t> plane_modifiers(int fd, uint32_t plane_id, uint32_t format) {
   std::vector<uint64_t> mods;
@@ -211,6 +180,51 @@ KmsOutput::~KmsOutput() {
     if (drmIsMaster(fd)) drmDropMaster(fd);
     close(fd);
   }
+}
+
+const drmModeModeInfo& choose_mode(const drmModeModeInfo* modes, int count, const DisplayOptions& o,
+                                   const std::string& name) {
+  const drmModeModeInfo* preferred = &modes[0];
+  for (int i = 0; i < count; ++i)
+    if (modes[i].type & DRM_MODE_TYPE_PREFERRED) {
+      preferred = &modes[i];
+      break;
+    }
+  if (o.width <= 0 && o.refresh_hz <= 0) return *preferred;
+  const int want_w = o.width > 0 ? o.width : preferred->hdisplay;
+  const int want_h = o.height > 0 ? o.height : preferred->vdisplay;
+  const drmModeModeInfo* best = nullptr;
+  for (int i = 0; i < count; ++i) {
+    const drmModeModeInfo& m = modes[i];
+    if (m.hdisplay != want_w || m.vdisplay != want_h) continue;
+    if (o.refresh_hz > 0 && static_cast<int>(m.vrefresh) != o.refresh_hz) continue;
+    if (m.flags & DRM_MODE_FLAG_INTERLACE) continue;
+    // Among equals the preferred one, else the highest refresh.
+    if (!best || (m.type & DRM_MODE_TYPE_PREFERRED) ||
+        (!(best->type & DRM_MODE_TYPE_PREFERRED) && m.vrefresh > best->vrefresh))
+      best = &m;
+  }
+  if (best) return *best;
+  // Appended, not "@" + string: GCC 12's -Wrestrict misfires on that at -O3.
+  std::string rate;
+  if (o.refresh_hz > 0) rate.append("@").append(std::to_string(o.refresh_hz));
+  LOG_WARN("drm: %s has no mode %dx%d%s; using its preferred mode %s", name.c_str(), want_w, want_h,
+           rate.c_str(), describe_mode(*preferred).c_str());
+  return *preferred;
+}
+
+bool needs_new_mode(bool had_screen, uint32_t old_connector, const drmModeModeInfo& old_mode,
+                    uint32_t connector, const drmModeModeInfo& mode) {
+  // The timings, not the flags of the connector's list (another monitor may
+  // list the same mode without marking it preferred) nor the name.
+  const drmModeModeInfo& a = old_mode;
+  const drmModeModeInfo& b = mode;
+  const bool same =
+      a.clock == b.clock && a.hdisplay == b.hdisplay && a.hsync_start == b.hsync_start &&
+      a.hsync_end == b.hsync_end && a.htotal == b.htotal && a.hskew == b.hskew &&
+      a.vdisplay == b.vdisplay && a.vsync_start == b.vsync_start && a.vsync_end == b.vsync_end &&
+      a.vtotal == b.vtotal && a.vscan == b.vscan && a.vrefresh == b.vrefresh && a.flags == b.flags;
+  return !had_screen || connector != old_connector || !same;
 }
 
 std::string describe_mode(const drmModeModeInfo& m) {
@@ -275,7 +289,7 @@ bool probe_kms_connector(KmsOutput& out, const DisplayOptions& options, uint32_t
   out.connector_name = name;
   out.crtc_id = crtc_id;
   out.plane_id = plane_id;
-  out.mode = *pick_mode(*conn, options, name);
+  out.mode = choose_mode(conn->modes, conn->count_modes, options, name);
   uint64_t cap = 0;
   out.addfb2_modifiers = drmGetCap(fd, DRM_CAP_ADDFB2_MODIFIERS, &cap) == 0 && cap;
   out.modifiers.clear();

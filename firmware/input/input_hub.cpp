@@ -216,6 +216,11 @@ void add_kiosk(Json& j, const KioskControl* kiosk) {
     j["scene"] = k.scene;
     j["brightness"] = json_decimals(k.brightness, 3);
     j["screen"] = k.screen_on ? "on" : "off";
+    // Where the frames go: a monitor unplugged shows here, not in "screen"
+    // (what was asked for). The size is of the frames drawn last.
+    j["display"] = {{"status", k.display},
+                    {"width", k.width > 0 ? Json(k.width) : Json(nullptr)},
+                    {"height", k.height > 0 ? Json(k.height) : Json(nullptr)}};
   }
   j["errors"] = log_error_count();
 }

@@ -17,6 +17,12 @@ struct KioskStatus {
   double brightness = 1.0;  // the master brightness asked for (0..1)
   bool screen_on = true;
   double fps = 0.0;  // frames presented per second, over about the last second
+  // Where the frames go (`state`'s "display"): "starting" (no frame shown
+  // yet), "drawing" (frames shown at width x height), "waiting" (no screen
+  // connected: DRM waits for one to be plugged in or switched on), "off"
+  // (switched off on purpose: `screen off` or the schedule).
+  std::string display = "starting";
+  int width = 0, height = 0;  // of the frames drawn last; 0 before the first
 };
 
 class KioskControl {

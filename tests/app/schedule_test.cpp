@@ -255,6 +255,10 @@ TEST_F(KioskSchedule, FakeClockSwitchesTheScreen) {
   k.apply_schedule();
   EXPECT_FALSE(k.screen_on());
   EXPECT_NE(hub.answer("state").find("\"screen\":\"off\""), std::string::npos);
+  EXPECT_NE(
+      hub.answer("state").find("\"screen\":\"off\",\"display\":{\"status\":\"off\",\"width\":null"),
+      std::string::npos)
+      << "switched off on purpose: the display says off, not waiting";
   EXPECT_NE(hub.answer("schedule").find("next: on at mon 17:00 (in 8h 30m)"), std::string::npos);
 }
 

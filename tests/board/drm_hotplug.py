@@ -5,9 +5,12 @@ board's vkms display (run inside it by board/virtual/run-in-vm.sh, as root):
   1. Candela starts with vkms's connector forced off: it logs once that it
      waits for a screen, keeps running, and tells systemd so (READY=1 with
      STATUS=...: waiting for a screen, then WATCHDOG=1 pings: the loop is
-     healthy) on a NOTIFY_SOCKET this test listens on.
-  2. The connector on: candela sets the mode and flips framebuffers.
-  3. Off: the CRTC shows nothing (no framebuffer); candela keeps running.
+     healthy) on a NOTIFY_SOCKET this test listens on; the control socket's
+     `state` says "display": {"status": "waiting", ...}.
+  2. The connector on: candela sets the mode and flips framebuffers; `state`
+     says drawing at 640x480.
+  3. Off: the CRTC shows nothing (no framebuffer); candela keeps running,
+     `state` says waiting again.
   4. On again: the mode is chosen again and frames are flipped again.
 
 The connector is forced through /sys/class/drm/card0-Virtual-1/status. On
@@ -20,6 +23,7 @@ a driver's hot-plug sends (with HOTPLUG=1) on real hardware.
 
 What is on screen is read from the kernel (the CRTC's framebuffer id). Every
 wait polls against a deadline."""
+import json
 import os
 import signal
 import socket
@@ -35,6 +39,18 @@ CARD = "/dev/dri/card0"
 STATUS = "/sys/class/drm/card0-Virtual-1/status"
 UEVENT = "/sys/class/drm/card0/uevent"
 WORK = tempfile.mkdtemp(prefix="candela-drm-hotplug-")
+
+def ask(path, line):
+    """One control-socket command, its one-line reply."""
+    s = socket.socket(socket.AF_UNIX)
+    s.settimeout(30)
+    try:
+        s.connect(path)
+        s.sendall((line + "\n").encode())
+        return s.makefile().readline().strip()
+    finally:
+        s.close()
+
 
 def connector(state):
     with open(STATUS, "w") as f:
@@ -64,10 +80,23 @@ def case_hotplug():
                 break
         return [m for m in messages if pred(m)]
 
+    control_dir = os.path.join(WORK, "control")  # candela runs as nobody
+    os.mkdir(control_dir)
+    os.chmod(control_dir, 0o777)
+    control = os.path.join(control_dir, "candela.sock")
     log_path = os.path.join(WORK, "candela.log")
     candela = CandelaOnDrm(CANDELA, log_path,
-                                dict(NOTIFY_SOCKET=sock_path, WATCHDOG_USEC="400000"))
+                           dict(NOTIFY_SOCKET=sock_path, WATCHDOG_USEC="400000"),
+                           args=("--test-pattern", "--size", "640x480", "--control", control))
     proc, log_text, alive = candela.proc, candela.log_text, candela.alive
+
+    def display_state():
+        """The `state` reply's "display" object (None before the socket is up)."""
+        alive()
+        try:
+            return json.loads(ask(control, "state"))["display"]
+        except (FileNotFoundError, ConnectionRefusedError):  # not listening yet
+            return None
 
     def fbs_seen(want, timeout):
         seen = set()
@@ -94,6 +123,10 @@ def case_hotplug():
                          lambda: alive() and received(lambda m: m == "WATCHDOG=1")[1:], timeout=10)
         check(len(pings) >= 1, "WATCHDOG=1 pings go on while waiting (the loop is healthy)")
         check(alive(), "candela keeps running without a screen")
+        shown = wait_for("`state` to say it waits for a screen",
+                         lambda: display_state() == dict(status="waiting", width=None, height=None),
+                         timeout=30, interval=0.1)
+        check(shown, "`state` while no monitor is connected: %s" % display_state())
         check(log_text().count("waiting for one") == 1, "the wait is logged once")
         reader = os.open(CARD, os.O_RDWR | os.O_CLOEXEC)  # candela is master: not this
         check(crtc_state(reader, crtc) == console,
@@ -108,6 +141,10 @@ def case_hotplug():
         fb, w, h = crtc_state(reader, crtc)
         check((w, h) == (640, 480), "mode 640x480 set on the connected screen (%dx%d)" % (w, h))
         check(len(first) >= 2, "frames presented after the hot-plug: %s" % sorted(first))
+        drawing = dict(status="drawing", width=640, height=480)
+        wait_for("`state` to say it draws at 640x480", lambda: display_state() == drawing,
+                 timeout=10, interval=0.1)
+        check(display_state() == drawing, "`state` once the monitor is there: %s" % drawing)
 
         # 3. Unplugged: drawing pauses, the CRTC shows nothing.
         connector("off")
@@ -115,6 +152,11 @@ def case_hotplug():
                  lambda: alive() and "went away" in log_text(), timeout=30)
         wait_for("the CRTC without a framebuffer", lambda: crtc_state(reader, crtc)[0] == 0, timeout=10)
         check(alive(), "candela keeps running after the unplug")
+        waiting = dict(status="waiting", width=640, height=480)
+        wait_for("`state` to say it waits again", lambda: display_state() == waiting,
+                 timeout=10, interval=0.1)
+        check(display_state() == waiting,
+              "`state` after the unplug: %s (the size drawn last)" % waiting)
 
         # 4. Plugged in again: the mode is set again, frames again.
         connector("on")
