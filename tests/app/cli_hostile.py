@@ -18,9 +18,10 @@ import time
 # check(), wait_for() and FAILED: tests/support/checks.py
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
 from checks import FAILED, check, wait_for  # noqa: E402
+from programs import program  # noqa: E402
 
 CASE, BUILD = sys.argv[1], os.path.abspath(sys.argv[2])
-CANDELA = os.path.join(BUILD, "firmware", "candela")
+CANDELA = program(os.path.join(BUILD, "firmware", "candela"))
 WORK = tempfile.mkdtemp(prefix="candela-hostile-")
 ELEMENT = '[[element]]\nkind = "test_pattern"\n'
 
@@ -34,7 +35,7 @@ def write(name, text):
 
 def run(*args, timeout=30):
     """Runs candela; a hang is a failure (TimeoutExpired), not a stuck test."""
-    p = subprocess.run([CANDELA, *args], capture_output=True, text=True, timeout=timeout)
+    p = subprocess.run([*CANDELA, *args], capture_output=True, text=True, timeout=timeout)
     return p.returncode, p.stdout + p.stderr
 
 
@@ -137,7 +138,7 @@ def case_cli_numbers():
 
 def start(out, new_session=False):
     log = open(os.path.join(WORK, "candela.log"), "w")
-    return subprocess.Popen([CANDELA, "--display", "headless", "--test-pattern", "--size", "64x48",
+    return subprocess.Popen([*CANDELA, "--display", "headless", "--test-pattern", "--size", "64x48",
                              "--out", out, "--log-level", "info"],
                             stdout=log, stderr=subprocess.STDOUT, start_new_session=new_session)
 

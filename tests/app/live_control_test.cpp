@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "support/program_command.h"
 
 extern char** environ;
 
@@ -97,7 +98,8 @@ class Candela {
  public:
   Candela(const TempDir& dir, std::vector<std::string> args, std::vector<std::string> env = {})
       : socket_(dir / "ctl"), log_(dir / "candela.log") {
-    args.insert(args.begin(), kBin);
+    const std::vector<std::string> cmd = test::program_command(kBin);  // the emulator first, if any
+    args.insert(args.begin(), cmd.begin(), cmd.end());
     for (const char* a : {"--control", socket_.c_str()}) args.emplace_back(a);
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
@@ -109,7 +111,7 @@ class Candela {
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
     posix_spawn_file_actions_addopen(&fa, 2, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (posix_spawn(&pid_, kBin.c_str(), &fa, nullptr, argv.data(), envp.data()) != 0) pid_ = -1;
+    if (posix_spawn(&pid_, argv[0], &fa, nullptr, argv.data(), envp.data()) != 0) pid_ = -1;
     posix_spawn_file_actions_destroy(&fa);
   }
   ~Candela() {

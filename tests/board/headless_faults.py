@@ -29,10 +29,11 @@ import time
 # check(), wait_for() and FAILED: tests/support/checks.py
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
 from checks import FAILED, check, run_case, wait_for  # noqa: E402
+from programs import program  # noqa: E402
 
 CASE, BUILD = sys.argv[1], os.path.abspath(sys.argv[2])
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-CANDELA = os.path.join(BUILD, "firmware", "candela")
+CANDELA = program(os.path.join(BUILD, "firmware", "candela"))
 WORK = tempfile.mkdtemp(prefix="candela-faults-")
 
 
@@ -47,7 +48,7 @@ def case_sigstop():
     sock_path = os.path.join(WORK, "ctl")
     log_path = os.path.join(WORK, "candela.log")
     with open(log_path, "w") as log:
-        proc = subprocess.Popen([CANDELA, "--display", "headless", "--realtime", "--fps", str(FPS),
+        proc = subprocess.Popen([*CANDELA, "--display", "headless", "--realtime", "--fps", str(FPS),
                                  "--size", "32x24", "--scene", os.path.join(ROOT, "firmware", "scenes", "default.toml"),
                                  "--control", sock_path], stdout=log, stderr=subprocess.STDOUT)
     try:
@@ -125,7 +126,7 @@ def frames_in(path):
 def render(scene, out, faults=()):
     """Renders FRAMES frames; each fault (frame, function) runs while candela is
     stopped once at least that many frames were written."""
-    proc = subprocess.Popen([CANDELA, "--display", "headless", "--size", "%dx%d" % (W, H), "--frames", str(FRAMES),
+    proc = subprocess.Popen([*CANDELA, "--display", "headless", "--size", "%dx%d" % (W, H), "--frames", str(FRAMES),
                              "--scene", scene, "--out", out], stderr=subprocess.PIPE, text=True)
     at = []
     try:

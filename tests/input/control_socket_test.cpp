@@ -23,6 +23,7 @@
 #include "input/input_event.h"
 #include "input/input_hub.h"
 #include "scene/element.h"
+#include "support/program_command.h"
 
 extern char** environ;
 
@@ -344,14 +345,15 @@ TEST(ControlSocket, CandelaProgramRegistersAGust) {
   // --realtime: animation time follows the clock, as on a screen. Free-running,
   // the test pattern takes thousands of steps a second and a gust is over
   // between two `state` questions.
-  std::vector<std::string> args = {bin,      "--display",   "headless",   "--test-pattern",
-                                   "--size", "64x48",       "--realtime", "--control",
-                                   path,     "--log-level", "warn"};
+  std::vector<std::string> args = test::program_command(bin);  // the emulator first, if any
+  for (const char* a : {"--display", "headless", "--test-pattern", "--size", "64x48", "--realtime",
+                        "--control", path.c_str(), "--log-level", "warn"})
+    args.emplace_back(a);
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, bin.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  ASSERT_EQ(posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
   const auto deadline = Clock::now() + std::chrono::seconds(20);
   std::unique_ptr<Client> client;
   while (Clock::now() < deadline) {
@@ -386,13 +388,15 @@ TEST(ControlSocket, CandelaProgramCountsCandlesLit) {
   const std::string dir = temp_dir();
   const std::string path = dir + "/ctl";
   const std::string bin = std::string(CANDELA_BINARY_DIR) + "/firmware/candela";
-  std::vector<std::string> args = {bin,         "--display", "headless",    "--size", "64x48",
-                                   "--control", path,        "--log-level", "warn"};
+  std::vector<std::string> args = test::program_command(bin);  // the emulator first, if any
+  for (const char* a : {"--display", "headless", "--size", "64x48", "--control", path.c_str(),
+                        "--log-level", "warn"})
+    args.emplace_back(a);
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, bin.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  ASSERT_EQ(posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
   const auto deadline = Clock::now() + std::chrono::seconds(60);
   std::unique_ptr<Client> client;
   double lit = NAN;

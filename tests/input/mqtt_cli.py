@@ -36,10 +36,13 @@ paho-mqtt (Debian `python3-paho-mqtt`).
 """
 import json, os, queue, select, shutil, signal, socket, subprocess, sys, tempfile, time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
+from programs import program  # noqa: E402
+
 import paho.mqtt.client as mqtt
 
 CASE, BUILD = sys.argv[1], sys.argv[2]
-CANDELA = os.path.join(BUILD, "firmware", "candela")
+CANDELA = program(os.path.join(BUILD, "firmware", "candela"))
 WORK = tempfile.mkdtemp(prefix="candela-mqtt-")
 PREFIX = "test/candela%d" % os.getpid()
 failures = []
@@ -158,7 +161,7 @@ def write_config(port, extra=""):
 
 def start_candela(config, *extra):
     log = open(os.path.join(WORK, "candela.log"), "w")
-    cmd = [CANDELA, "--display", "headless", "--test-pattern", "--size", "64x48", "--realtime",
+    cmd = [*CANDELA, "--display", "headless", "--test-pattern", "--size", "64x48", "--realtime",
            "--log-level", "info", *extra]
     if config:
         cmd += ["--config", config]
@@ -548,22 +551,22 @@ def case_config():
     ]:
         path = os.path.join(WORK, "bad.toml")
         open(path, "w").write("[mqtt]\n" + body)
-        r = subprocess.run([CANDELA, "--config", path, "--test-pattern", "--check"],
+        r = subprocess.run([*CANDELA, "--config", path, "--test-pattern", "--check"],
                            capture_output=True, text=True, timeout=60)
         check(r.returncode == 2 and key in r.stderr and what in r.stderr and path in r.stderr,
               "refused: %s" % body.strip().replace("\n", "; "), r.stderr)
     path = os.path.join(WORK, "good.toml")
     open(path, "w").write('[mqtt]\nhost = "broker.lan"\nusername = "u"\npassword_file = "p"\n')
-    r = subprocess.run([CANDELA, "--config", path, "--test-pattern", "--check"],
+    r = subprocess.run([*CANDELA, "--config", path, "--test-pattern", "--check"],
                        capture_output=True, text=True, timeout=60)
     check(r.returncode == 0, "a good [mqtt] passes --check", r.stderr)
     os.chmod(pw, 0o644)
-    r = subprocess.run([CANDELA, "--config", path, "--test-pattern", "--check"],
+    r = subprocess.run([*CANDELA, "--config", path, "--test-pattern", "--check"],
                        capture_output=True, text=True, timeout=60)
     check("can be read by others (mode 644); chmod 600 it" in r.stderr,
           "a password file others can read is warned about", r.stderr)
     os.chmod(pw, 0o600)
-    r = subprocess.run([CANDELA, "--config", path, "--test-pattern", "--check"],
+    r = subprocess.run([*CANDELA, "--config", path, "--test-pattern", "--check"],
                        capture_output=True, text=True, timeout=60)
     check("can be read by others" not in r.stderr, "not when it is 0600", r.stderr)
 
@@ -586,7 +589,7 @@ def case_room():
                 f.write('[room]\nposition = [%g, 0]\ntopic = "%s"\n' % (xs[n], room))
         ctl[n] = os.path.join(WORK, n + ".ctl")
         logs[n] = os.path.join(WORK, n + ".log")
-        cmd = [CANDELA, "--display", "headless", "--test-pattern", "--size", "64x48", "--realtime",
+        cmd = [*CANDELA, "--display", "headless", "--test-pattern", "--size", "64x48", "--realtime",
                "--log-level", "debug", "--config", conf, "--control", ctl[n]]
         ps[n] = subprocess.Popen(cmd, stdout=open(logs[n], "w"), stderr=subprocess.STDOUT)
         procs.append(ps[n])

@@ -23,11 +23,12 @@ import zlib
 # check(), wait_for() and FAILED: tests/support/checks.py
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
 from checks import FAILED, check, run_case, wait_for  # noqa: E402
+from programs import program  # noqa: E402
 
 CASE, BUILD = sys.argv[1], os.path.abspath(sys.argv[2])
-CANDELA = os.path.join(BUILD, "firmware", "candela")
-RECORD = os.path.join(BUILD, "tools", "record", "candela-record")
-TOOL = os.path.join(BUILD, "tools", "candela-tool", "candela-tool")
+CANDELA = program(os.path.join(BUILD, "firmware", "candela"))
+RECORD = program(os.path.join(BUILD, "tools", "record", "candela-record"))
+TOOL = program(os.path.join(BUILD, "tools", "candela-tool", "candela-tool"))
 WORK = tempfile.mkdtemp(prefix="candela-vb-")
 
 
@@ -40,7 +41,7 @@ class Candela:
         self.log_path = os.path.join(WORK, "candela.log")
         self.log = open(self.log_path, "w")
         self.proc = subprocess.Popen(
-            ["nice", "-n", str(nice), CANDELA, "--display", "headless", "--realtime", "--size", "32x24", "--scene", self.scene,
+            ["nice", "-n", str(nice), *CANDELA, "--display", "headless", "--realtime", "--size", "32x24", "--scene", self.scene,
              "--control", self.sock_path, *extra], stdout=self.log, stderr=subprocess.STDOUT)
         self.sock = None
         wait_for("the control socket", self._connect, timeout=60)
@@ -320,7 +321,7 @@ def case_record_libcamera_vimc():
     os.chmod(dest, 0o777)
     out = os.path.join(dest, "clip")
     n = 12
-    p = subprocess.run(AS_USER + [RECORD, "--backend", "libcamera", "--device", cam_id, "--out", out,
+    p = subprocess.run(AS_USER + [*RECORD, "--backend", "libcamera", "--device", cam_id, "--out", out,
                                   "--size", "320x240", "--fps", "10", "--frames", str(n)],
                        capture_output=True, text=True, timeout=180, env=dict(os.environ, HOME="/tmp"))
     print("candela-record: status %d: %s" % (p.returncode, p.stderr.strip()), flush=True)
@@ -359,7 +360,7 @@ def case_record_libcamera_unplugged():
     # before it writes the final manifest, so the recorder exited minutes late.
     # libcamera_capture.cpp now finds the removed nodes and silences them.
     env = {k: v for k, v in os.environ.items() if k != "DISPLAY"}
-    proc = subprocess.Popen([RECORD, "--backend", "libcamera", "--device", cam_id, "--out", out,
+    proc = subprocess.Popen([*RECORD, "--backend", "libcamera", "--device", cam_id, "--out", out,
                              "--size", "320x240", "-n", "100000", "--preview", "drm"],
                             stderr=subprocess.PIPE, text=True, env=env)
     wait_for_manifest_frames(out, 5)
@@ -498,7 +499,7 @@ def check_dataset(out, m):
     check(abs(m["measured_fps"] - rate) < 0.01 * rate,
           "manifest measured_fps %.2f matches the timestamps (%.2f)" % (m["measured_fps"], rate))
     ds = os.path.join(WORK, "clip_dataset")
-    p = subprocess.run([TOOL, "ingest", out, "--out", ds, "--width", "32", "--height", "48"],
+    p = subprocess.run([*TOOL, "ingest", out, "--out", ds, "--width", "32", "--height", "48"],
                        capture_output=True, text=True, timeout=120)
     check(p.returncode == 0, "candela-tool ingest accepts the recording: " + p.stderr.strip()[-300:])
     if p.returncode == 0:
@@ -525,7 +526,7 @@ def check_recording(out, expect_complete):
 def record(out, *args, timeout=120, env=None):
     # The live preview is tested by the record_preview_* cases; elsewhere it stays off.
     preview = () if "--preview" in args else ("--preview", "off")
-    p = subprocess.run([RECORD, "--device", "/dev/video0", "--out", out, *preview, *args],
+    p = subprocess.run([*RECORD, "--device", "/dev/video0", "--out", out, *preview, *args],
                        capture_output=True, text=True, timeout=timeout, env=env)
     print("candela-record: status %d: %s" % (p.returncode, p.stderr.strip()), flush=True)
     return p
@@ -555,7 +556,7 @@ def case_record_vivid():
 
 def case_record_no_camera():
     out = os.path.join(WORK, "none")
-    p = subprocess.run([RECORD, "--device", "/dev/video61", "--out", out, "-n", "5"],
+    p = subprocess.run([*RECORD, "--device", "/dev/video61", "--out", out, "-n", "5"],
                        capture_output=True, text=True, timeout=30)
     check(p.returncode == 4, "exit status 4 (no camera): %d" % p.returncode)
     check("/dev/video61" in p.stderr and "No such file" in p.stderr, "clear message: " + p.stderr.strip())
@@ -563,7 +564,7 @@ def case_record_no_camera():
     # An asked-for preview that cannot open changes nothing of that: same status and message,
     # and nothing is opened before a camera delivers.
     env = {k: v for k, v in os.environ.items() if k != "DISPLAY"}
-    p2 = subprocess.run([RECORD, "--device", "/dev/video61", "--out", out, "-n", "5", "--preview", "window"],
+    p2 = subprocess.run([*RECORD, "--device", "/dev/video61", "--out", out, "-n", "5", "--preview", "window"],
                         capture_output=True, text=True, timeout=30, env=env)
     check(p2.returncode == 4 and p2.stderr.strip().splitlines()[-1] == p.stderr.strip().splitlines()[-1],
           "--preview window without X: the same no-camera ending: " + p2.stderr.strip())
@@ -594,7 +595,7 @@ def case_record_disk_full():
 
 def case_record_camera_unplugged():
     out = os.path.join(WORK, "clip")
-    proc = subprocess.Popen([RECORD, "--device", "/dev/video0", "--out", out, "--size", "320x180",
+    proc = subprocess.Popen([*RECORD, "--device", "/dev/video0", "--out", out, "--size", "320x180",
                              "--fps", "10", "-n", "100000", "--preview", "off"],
                             stderr=subprocess.PIPE, text=True)
     wait_for_manifest_frames(out, 5)
@@ -699,7 +700,7 @@ def case_record_preview_drm():
     # The kiosk holds the screen: the preview steps aside, the recording is whole.
     log_path = os.path.join(WORK, "kiosk.log")
     with open(log_path, "w") as log:
-        kiosk = subprocess.Popen([CANDELA, "--display", "drm", "--test-pattern"], stdout=log,
+        kiosk = subprocess.Popen([*CANDELA, "--display", "drm", "--test-pattern"], stdout=log,
                                  stderr=subprocess.STDOUT)
     try:
         wait_for("the kiosk's modeset", lambda: "modeset" in open(log_path).read(), timeout=60)

@@ -30,6 +30,9 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
+from programs import program  # noqa: E402
+
 SKIP = 77
 NOBODY = 65534
 
@@ -128,6 +131,7 @@ def main():
     if sys.argv[1] == "--inside":
         return inside(sys.argv[2:])
     candela, unit, scratch = [os.path.abspath(a) for a in sys.argv[1:4]]
+    candela = program(candela)  # the command: an emulator first in a cross build
     extra = sys.argv[5:] if len(sys.argv) > 4 and sys.argv[4] == "--" else None
     if scratch.startswith(("/tmp/", "/home/", "/root/")):
         sys.exit("hardened_run: SCRATCH must not be under /tmp, /home or /root (the sandbox hides them)")
@@ -187,18 +191,18 @@ def main():
                                   env=env, capture_output=True, text=True, **kw)
 
         if extra is not None:
-            r = sandboxed([candela] + extra)
+            r = sandboxed(candela + extra)
             sys.stdout.write(r.stdout)
             sys.stderr.write(r.stderr)
             print("hardened_run: candela exited %d" % r.returncode)
             return r.returncode
         args = ["--display", "headless", "--size", "320x180", "--frames", "30"]
         ref = os.path.join(scratch, "reference.y4m")
-        r = subprocess.run([candela] + args + ["--out", ref], capture_output=True, text=True)
+        r = subprocess.run(candela + args + ["--out", ref], capture_output=True, text=True)
         if r.returncode != 0:
             sys.exit("unconfined candela failed: " + r.stderr)
         hard = os.path.join(out, "hardened.y4m")
-        r = sandboxed([candela] + args + ["--out", hard])
+        r = sandboxed(candela + args + ["--out", hard])
         print(r.stderr.strip()[-1500:])
         failures = []
         if r.returncode != 0:

@@ -18,7 +18,11 @@ import socket
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
+from programs import program  # noqa: E402
+
 candela, scratch = [os.path.abspath(a) for a in sys.argv[1:3]]
+candela = program(candela)  # the command: an emulator first in a cross build
 os.makedirs(scratch, exist_ok=True)
 failures = []
 
@@ -47,7 +51,7 @@ def run(args, env_extra, abstract=False):
     # net.unix.max_dgram_qlen (10) messages, and candela drops what does not fit
     # rather than wait. select() wakes on a datagram; its timeout only lets
     # the loop notice that candela has exited.
-    p = subprocess.Popen([candela] + args, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    p = subprocess.Popen(candela + args, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     msgs = []
     while True:
         if select.select([s], [], [], 0.2)[0]:

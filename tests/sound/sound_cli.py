@@ -18,8 +18,11 @@
 """
 import array, json, math, os, shutil, signal, socket, subprocess, sys, tempfile, time, wave
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
+from programs import program  # noqa: E402
+
 CASE, BUILD = sys.argv[1], sys.argv[2]
-CANDELA = os.path.join(BUILD, "firmware", "candela")
+CANDELA = program(os.path.join(BUILD, "firmware", "candela"))
 SRC = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCENE = os.path.join(SRC, "firmware", "scenes", "perlin-fireplace.toml")
 WORK = tempfile.mkdtemp(prefix="candela-sound-")
@@ -33,7 +36,7 @@ def check(ok, what, detail=""):
 
 
 def render(out, frames, *extra):
-    cmd = [CANDELA, "--display", "headless", "--scene", SCENE, "--size", "64x48", "--frames",
+    cmd = [*CANDELA, "--display", "headless", "--scene", SCENE, "--size", "64x48", "--frames",
            str(frames), "--out", out, "--log-level", "warn", *extra]
     return subprocess.run(cmd, capture_output=True, text=True, timeout=300)
 
@@ -82,7 +85,7 @@ def case_mp4_sound():
 def case_signal_mp4():
     out = os.path.join(WORK, "c.mp4")
     log = open(os.path.join(WORK, "log"), "w")
-    p = subprocess.Popen([CANDELA, "--display", "headless", "--scene", SCENE, "--size", "64x48",
+    p = subprocess.Popen([*CANDELA, "--display", "headless", "--scene", SCENE, "--size", "64x48",
                           "--out", out, "--log-level", "info"], stdout=log, stderr=subprocess.STDOUT,
                          start_new_session=True)
     deadline = time.monotonic() + 60
@@ -111,7 +114,7 @@ def case_volume_socket():
     check(r.returncode == 0, "reference render exits 0", r.stderr)
     ctl = os.path.join(WORK, "ctl")
     b = os.path.join(WORK, "b.y4m")
-    cmd = [CANDELA, "--display", "headless", "--scene", SCENE, "--size", "64x48", "--frames",
+    cmd = [*CANDELA, "--display", "headless", "--scene", SCENE, "--size", "64x48", "--frames",
            str(frames), "--out", b, "--log-level", "warn", "--control", ctl]
     p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 60
