@@ -101,6 +101,7 @@ class EigenReconstructor {
 
   int width_, height_, components_, entries_, layers_;
   bool layered_;
+  bool pixel_major_ = false;  // the stack's texel (entry layer, x) in layer y (the constructor)
   ReconstructProgram full_, fill_, near_;
   Texture stack_;
   RenderTarget target_;
