@@ -21,10 +21,25 @@ uniform float u_base;         // deformed: base height
 uniform float u_height;       // deformed: base-to-tip length
 uniform int u_deform;         // 0: rigid
 
-in vec2 a_grid;  // 0..1 over the whole billboard
+#ifndef GRID_COLUMNS
+#define GRID_COLUMNS 8
+#endif
+uniform highp sampler2D u_cells;  // eigenflame_cells.frag: 0 where the cell is black
+uniform int u_cells_row;          // this flame's first row there
+
+in vec2 a_grid;   // 0..1 over the whole billboard
+in float a_cell;  // the grid cell this vertex's triangle lies in: row * GRID_COLUMNS + column
 out vec2 v_glow_uv;   // over the sprite (flame + glow margin), top row first
 
 void main() {
+  // A cell that adds no light (black sprite texels all over it): its
+  // triangles put outside the view, where they cost nothing.
+  int cell = int(a_cell);
+  if (texelFetch(u_cells, ivec2(cell % GRID_COLUMNS, u_cells_row + cell / GRID_COLUMNS), 0).r == 0.0) {
+    v_glow_uv = vec2(0.0);
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    return;
+  }
   vec2 uv = vec2(mix(-u_margin.x, 1.0 + u_margin.y, a_grid.x),
                  mix(-u_margin.z, 1.0 + u_margin.w, a_grid.y));
   v_glow_uv = vec2(a_grid.x, 1.0 - a_grid.y);  // the glow texture is stored top row first

@@ -5,6 +5,8 @@
 // u_coef (one float per stack entry) and every offset into u_bias.
 // Default (packed): four entries per RGBA texel, one layer per four entries.
 // Otherwise (LAYERED): one entry per layer in the red channel.
+// PIXEL_MAJOR: the stack's "layer" l of pixel (x, y) is at texel (l, x) of
+// array layer y, so that a pixel's entries lie side by side in memory.
 precision highp float;
 precision highp int;
 precision highp usampler2DArray;
@@ -31,6 +33,12 @@ out uvec4 o_gray;
 out vec4 o_gray;
 #endif
 
+#ifdef PIXEL_MAJOR
+#define STACK_AT(l) ivec3(l, p.x, p.y)
+#else
+#define STACK_AT(l) ivec3(p, l)
+#endif
+
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy) - u_origin;
   float v = u_bias;
@@ -39,10 +47,10 @@ void main() {
 #endif
 #ifndef LAYERED
   for (int l = 0; l < u_layers; ++l)
-    v += dot(vec4(texelFetch(u_stack, ivec3(p, l), 0)), u_coef[l]);
+    v += dot(vec4(texelFetch(u_stack, STACK_AT(l), 0)), u_coef[l]);
 #else
   for (int l = 0; l < u_layers; ++l)
-    v += float(texelFetch(u_stack, ivec3(p, l), 0).r) * u_coef[l >> 2][l & 3];
+    v += float(texelFetch(u_stack, STACK_AT(l), 0).r) * u_coef[l >> 2][l & 3];
 #endif
 #ifdef TO_CACHE
   o_gray = uvec4(uint(clamp(floor((v + 256.0) * 64.0 + 0.5), 0.0, 65535.0)), 0u, 0u, 1u);

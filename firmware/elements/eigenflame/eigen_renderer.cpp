@@ -44,6 +44,16 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
   const bool wide = mean.u16 || eigen.u16;
   const int channels = layout == StackLayout::kPacked ? 4 : 1;
   const size_t px = static_cast<size_t>(width_) * height_;
+  // Pixel-major where the GPU's limits allow: the texture's layer is the
+  // image row, its texel (layer l, pixel x), so one pixel's entries lie side
+  // by side in memory. Layer-major (layer l, texel (x, y)) every entry of a
+  // pixel is a whole image away from the last: on a software rasteriser each
+  // fetch then misses the caches and the TLB, and a full sum of the fire
+  // model took ~45 ms on a busy 2-core machine. Same values, same sum.
+  GLint max_size = 0, max_layers = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
+  pixel_major_ = layers_ <= max_size && width_ <= max_size && height_ <= max_layers;
   // Raw quantised values, entry 0 the mean, widened to 16 bits if either set is.
   std::vector<uint16_t> wide_data;
   std::vector<uint8_t> narrow_data;
@@ -52,7 +62,11 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
     const int layer = channels == 4 ? e / 4 : e, ch = channels == 4 ? e % 4 : 0;
     for (size_t p = 0; p < px; ++p) {
       const uint32_t v = e == 0 ? raw_at(mean, 0, p) : raw_at(eigen, e - 1, p);
-      const size_t at = (static_cast<size_t>(layer) * px + p) * channels + ch;
+      const size_t at =
+          (pixel_major_ ? p * static_cast<size_t>(layers_) + static_cast<size_t>(layer)
+                        : static_cast<size_t>(layer) * px + p) *
+              channels +
+          ch;
       if (wide)
         wide_data[at] = static_cast<uint16_t>(v);
       else
@@ -65,8 +79,10 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
   const GLenum internal =
       channels == 4 ? (wide ? GL_RGBA16UI : GL_RGBA8UI) : (wide ? GL_R16UI : GL_R8UI);
   const GLenum format = channels == 4 ? GL_RGBA_INTEGER : GL_RED_INTEGER;
-  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, static_cast<GLint>(internal), width_, height_, layers_, 0,
-               format, wide ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE,
+  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, static_cast<GLint>(internal),
+               pixel_major_ ? layers_ : width_, pixel_major_ ? width_ : height_,
+               pixel_major_ ? height_ : layers_, 0, format,
+               wide ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE,
                wide ? static_cast<const void*>(wide_data.data()) : narrow_data.data());
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -94,7 +110,7 @@ EigenReconstructor::ReconstructProgram::ReconstructProgram(const std::string& de
 
 std::string EigenReconstructor::program_defines() const {
   return "#define MAX_VEC4 " + std::to_string(coef_.size() / 4) + "\n" +
-         (layered_ ? "#define LAYERED\n" : "");
+         (layered_ ? "#define LAYERED\n" : "") + (pixel_major_ ? "#define PIXEL_MAJOR\n" : "");
 }
 
 void EigenReconstructor::draw_at(std::span<const float> weights, int x, int y) {
@@ -286,13 +302,18 @@ void EigenRenderer::composite(const Mat4& view, const Mat4& view_projection,
   glBindTexture(GL_TEXTURE_2D, batch_->sprite_atlas());
   glUniform1i(u.sprite, 0);
   glUniform1f(u.light, pose.light);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, batch_->cells_atlas());
+  glUniform1i(u.cells, 1);
+  glUniform1i(u.cells_row, job_.cells_y);
+  glActiveTexture(GL_TEXTURE0);
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
   glBindVertexArray(batch_->grid_vao());
-  glDrawElements(GL_TRIANGLES, batch_->grid_indices(), GL_UNSIGNED_SHORT, nullptr);
+  glDrawArrays(GL_TRIANGLES, 0, batch_->grid_vertices());
   glBindVertexArray(0);
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
@@ -313,47 +334,51 @@ EigenBatch::EigenBatch() {
   ug_.mask = glow_.uniform("u_mask");
   flame_ =
       Program::from_library("eigenflame.vert", "eigenflame.frag",
-                            "#define SHAPE_ROWS " + std::to_string(FlamePose::kShapeRows) + "\n");
+                            "#define SHAPE_ROWS " + std::to_string(FlamePose::kShapeRows) +
+                                "\n#define GRID_COLUMNS " + std::to_string(kGridColumns) + "\n");
   const auto u = [&](const char* n) { return flame_.uniform(n); };
-  uf_ = {u("u_view_projection"), u("u_origin"), u("u_right"),       u("u_size"),
-         u("u_margin"),          u("u_shape"),  u("u_base"),        u("u_height"),
-         u("u_deform"),          u("u_sprite"), u("u_sprite_rect"), u("u_light")};
+  uf_ = {u("u_view_projection"), u("u_origin"), u("u_right"),  u("u_size"),     u("u_margin"),
+         u("u_shape"),           u("u_base"),   u("u_height"), u("u_deform"),   u("u_sprite"),
+         u("u_sprite_rect"),     u("u_light"),  u("u_cells"),  u("u_cells_row")};
+  cells_program_ = Program::from_library("fullscreen.vert", "eigenflame_cells.frag");
+  uc_ = {cells_program_.uniform("u_sprite"), cells_program_.uniform("u_sprite_rect"),
+         cells_program_.uniform("u_origin"), cells_program_.uniform("u_cells")};
   sprite_program_ = Program::from_library("fullscreen.vert", "eigenflame_sprite.frag");
   const auto v = [&](const char* n) { return sprite_program_.uniform(n); };
   us_ = {v("u_gray"),      v("u_glow"),     v("u_ramp"),       v("u_gray_rect"),
          v("u_glow_rect"), v("u_margin"),   v("u_brightness"), v("u_glow_strength"),
          v("u_glow_tint"), v("u_edge_fade")};
 
-  // The billboard grid: kGridColumns x kShapeRows cells over the glow-padded area.
+  // The billboard grid: kGridColumns x kShapeRows cells over the glow-padded
+  // area, two triangles a cell, each vertex with its cell's index (a cell
+  // whose sprite is black is left out: eigenflame.vert).
   std::vector<float> verts;
-  std::vector<uint16_t> idx;
   const int rows = FlamePose::kShapeRows;
-  for (int r = 0; r <= rows; ++r)
-    for (int c = 0; c <= kGridColumns; ++c) {
-      verts.push_back(static_cast<float>(c) / kGridColumns);
-      verts.push_back(static_cast<float>(r) / rows);
-    }
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < kGridColumns; ++c) {
-      const auto a = static_cast<uint16_t>(r * (kGridColumns + 1) + c);
-      const auto b = static_cast<uint16_t>(a + kGridColumns + 1);
-      idx.insert(idx.end(), {a, static_cast<uint16_t>(a + 1), b, b, static_cast<uint16_t>(a + 1),
-                             static_cast<uint16_t>(b + 1)});
+      const auto cell = static_cast<float>(r * kGridColumns + c);
+      const auto put = [&](int cc, int rr) {
+        verts.insert(verts.end(),
+                     {static_cast<float>(cc) / kGridColumns, static_cast<float>(rr) / rows, cell});
+      };
+      put(c, r), put(c + 1, r), put(c, r + 1);
+      put(c, r + 1), put(c + 1, r), put(c + 1, r + 1);
     }
-  grid_indices_ = static_cast<GLsizei>(idx.size());
+  grid_vertices_ = static_cast<GLsizei>(verts.size() / 3);
   grid_vao_ = make_vertex_array();
   grid_vbo_ = make_buffer();
-  grid_ibo_ = make_buffer();
   glBindVertexArray(grid_vao_.get());
   glBindBuffer(GL_ARRAY_BUFFER, grid_vbo_.get());
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(verts.size() * sizeof(float)), verts.data(),
                GL_STATIC_DRAW);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, grid_ibo_.get());
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(uint16_t)),
-               idx.data(), GL_STATIC_DRAW);
   const GLint loc = glGetAttribLocation(flame_.id(), "a_grid");
   glEnableVertexAttribArray(static_cast<GLuint>(loc));
-  glVertexAttribPointer(static_cast<GLuint>(loc), 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glVertexAttribPointer(static_cast<GLuint>(loc), 2, GL_FLOAT, GL_FALSE, 3 * sizeof(float),
+                        nullptr);
+  const GLint cell_loc = glGetAttribLocation(flame_.id(), "a_cell");
+  glEnableVertexAttribArray(static_cast<GLuint>(cell_loc));
+  glVertexAttribPointer(static_cast<GLuint>(cell_loc), 1, GL_FLOAT, GL_FALSE, 3 * sizeof(float),
+                        reinterpret_cast<const void*>(2 * sizeof(float)));
   glBindVertexArray(0);
   fullscreen_vao_ = make_vertex_array();
 }
@@ -419,6 +444,9 @@ void EigenBatch::layout() {
   glow_a_ = RenderTarget::checked(glow_w, glow_h, "eigenflame: glow atlas");
   glow_b_ = RenderTarget::checked(glow_w, glow_h, "eigenflame: glow atlas");
   sprite_ = RenderTarget::checked(sprite_w, sprite_h, "eigenflame: sprite atlas");
+  int cells_rows = 0;
+  for (EigenSpriteJob* j : members_) j->cells_y = cells_rows, cells_rows += FlamePose::kShapeRows;
+  cells_ = RenderTarget::checked(kGridColumns, std::max(1, cells_rows), "eigenflame: cells atlas");
   for (EigenSpriteJob* j : members_) j->drawn_valid = false;  // new atlases: draw everyone
   laid_out_ = true;
 }
@@ -502,6 +530,23 @@ void EigenBatch::render() {
     glUniform1f(us_.glow_strength, j->glow_strength);
     glUniform3f(us_.glow_tint, j->glow_tint.x, j->glow_tint.y, j->glow_tint.z);
     glUniform1f(us_.edge_fade, j->edge_fade);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  // 4. Which cells of each billboard add any light.
+  cells_.bind();
+  cells_program_.use();
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, sprite_.texture());
+  glUniform1i(uc_.sprite, 0);
+  glUniform2f(uc_.cells, static_cast<float>(kGridColumns),
+              static_cast<float>(FlamePose::kShapeRows));
+  glBindVertexArray(fullscreen_vao_.get());
+  for (EigenSpriteJob* j : members_) {
+    if (!j->redraw) continue;
+    glViewport(0, j->cells_y, kGridColumns, FlamePose::kShapeRows);
+    glUniform4f(uc_.sprite_rect, static_cast<float>(j->sprite_x), static_cast<float>(j->sprite_y),
+                static_cast<float>(j->sprite_w), static_cast<float>(j->sprite_h));
+    glUniform2i(uc_.origin, 0, j->cells_y);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
   glActiveTexture(GL_TEXTURE0);

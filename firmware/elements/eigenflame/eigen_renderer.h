@@ -101,6 +101,7 @@ class EigenReconstructor {
 
   int width_, height_, components_, entries_, layers_;
   bool layered_;
+  bool pixel_major_ = false;  // the stack's texel (entry layer, x) in layer y (the constructor)
   ReconstructProgram full_, fill_, near_;
   Texture stack_;
   RenderTarget target_;
@@ -159,6 +160,7 @@ struct EigenSpriteJob {
   int sprite_w = 0, sprite_h = 0;
   // Places in the atlases (EigenBatch's layout).
   int gray_x = 0, gray_y = 0, glow_x = 0, glow_y = 0, sprite_x = 0, sprite_y = 0;
+  int cells_y = 0;  // its first row in the cells atlas (which billboard cells are black)
   // The weights its sprite in the atlas shows (EigenBatch::render redraws
   // only flames whose weights changed: a held model frame costs nothing).
   std::array<float, EigenReconstructor::kMaxComponents> drawn{};
@@ -226,10 +228,14 @@ class EigenBatch final : public SceneResource {
 
   GLuint sprite_atlas() const { return sprite_.texture(); }
   const Program& flame_program() const { return flame_; }
+  // Per flame, which cells of its billboard grid add any light (1) and which
+  // are black (0): the billboard draws only the first (eigenflame_cells.frag).
+  GLuint cells_atlas() const { return cells_.texture(); }
   GLuint grid_vao() const { return grid_vao_.get(); }
-  GLsizei grid_indices() const { return grid_indices_; }
+  GLsizei grid_vertices() const { return grid_vertices_; }
   struct FlameUniforms {
-    GLint vp, origin, right, size, margin, shape, base, height, deform, sprite, sprite_rect, light;
+    GLint vp, origin, right, size, margin, shape, base, height, deform, sprite, sprite_rect, light,
+        cells, cells_row;
   };
   const FlameUniforms& flame_uniforms() const { return uf_; }
 
@@ -244,11 +250,14 @@ class EigenBatch final : public SceneResource {
   };
   std::vector<SharedReconstructor> reconstructors_;
   bool laid_out_ = false;
-  RenderTarget gray_, glow_a_, glow_b_, sprite_;
-  Program glow_, sprite_program_, flame_;
+  RenderTarget gray_, glow_a_, glow_b_, sprite_, cells_;
+  Program glow_, sprite_program_, flame_, cells_program_;
   VertexArray fullscreen_vao_, grid_vao_;
-  Buffer grid_vbo_, grid_ibo_;
-  GLsizei grid_indices_ = 0;
+  Buffer grid_vbo_;
+  GLsizei grid_vertices_ = 0;
+  struct {
+    GLint sprite, sprite_rect, origin, cells;
+  } uc_{};
   struct {
     GLint source, map, step, taps, offset, weight, clamp_rect, mask;
   } ug_{};

@@ -95,7 +95,12 @@ std::vector<float> log_mesh() {
     for (int i = 0; i < kAround; ++i) {
       const float r0 = static_cast<float>(i) / kAround, r1 = static_cast<float>(i + 1) / kAround;
       const float cap = end ? 1.0f : -1.0f, along = static_cast<float>(end);
-      put(along, 0, cap * 2), put(along, r0, cap), put(along, r1, cap);  // |cap| 2: centre
+      // Wound as the side is (counter-clockwise seen from outside), so that
+      // back faces can be culled.
+      if (end)
+        put(along, 0, cap * 2), put(along, r1, cap), put(along, r0, cap);  // |cap| 2: centre
+      else
+        put(along, 0, cap * 2), put(along, r0, cap), put(along, r1, cap);
     }
   return v;
 }
@@ -280,7 +285,9 @@ class Hearth final : public Element {
       glEnable(GL_DEPTH_TEST);
       glDepthFunc(GL_LESS);
       bind_log_instances(0);
+      cull_back_faces(true);
       glDrawArraysInstanced(GL_TRIANGLES, 0, vertex_count_, log_count_);
+      cull_back_faces(false);
       glDisable(GL_DEPTH_TEST);
     }
     glBindVertexArray(0);
@@ -330,6 +337,20 @@ class Hearth final : public Element {
     glUniform2f(half, s_.width * 0.5f, s_.depth * 0.5f);
   }
 
+  // A log is a closed mesh wound counter-clockwise seen from outside
+  // (log_mesh): its back faces always lie behind its front faces, so they
+  // are culled rather than shaded and then hidden by the depth test (on a
+  // software rasteriser that was a third of the logs' cost).
+  static void cull_back_faces(bool on) {
+    if (!on) {
+      glDisable(GL_CULL_FACE);
+      return;
+    }
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+  }
+
   // Binds the log VAO with the per-log attributes starting at instance `first`.
   void bind_log_instances(GLsizei first) const {
     glBindVertexArray(vao_.get());
@@ -364,7 +385,9 @@ class Hearth final : public Element {
     glDepthFunc(GL_LESS);
     // Instances [first, first + count).
     bind_log_instances(first);
+    cull_back_faces(true);
     glDrawArraysInstanced(GL_TRIANGLES, 0, vertex_count_, count);
+    cull_back_faces(false);
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(0);
   }
