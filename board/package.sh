@@ -28,12 +28,16 @@ if [ -z "$build" ]; then
   build=build-package
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DCANDELA_BUILD_TESTS=OFF -DCANDELA_BUILD_BENCH=OFF
-  cmake --build "$build" -j "$(nproc)" --target candela candela-record candela-tool
+  # Everything the install rules name (candela-studio too, where libimgui-dev
+  # is installed): a narrower target list left CPack without the studio.
+  cmake --build "$build" -j "$(nproc)"
 fi
 [ -f "$build/CPackConfig.cmake" ] || { echo "package: $build is not a configured build tree" >&2; exit 1; }
 grep -q '^CANDELA_SANITIZE:BOOL=ON' "$build/CMakeCache.txt" &&
   { echo "package: $build is a sanitizer build; package a normal one" >&2; exit 1; }
-for t in firmware/candela tools/record/candela-record tools/candela-tool/candela-tool; do
+programs=(firmware/candela tools/record/candela-record tools/candela-tool/candela-tool)
+grep -q '^CANDELA_STUDIO:INTERNAL=ON' "$build/CMakeCache.txt" 2>/dev/null && programs+=(tools/candela-tool/candela-studio)
+for t in "${programs[@]}"; do
   [ -x "$build/$t" ] || { echo "package: $build/$t not built (cmake --build $build)" >&2; exit 1; }
 done
 

@@ -65,6 +65,10 @@ string(CONCAT CPACK_COMPONENT_CANDELA-TOOL_DESCRIPTION
 # Maintainer scripts use adduser (where systemd-sysusers is missing) and
 # deb-systemd-helper; shlibdeps adds the libraries.
 set(CPACK_DEBIAN_CANDELA_PACKAGE_DEPENDS "adduser, init-system-helpers (>= 1.52)")
+# Not needed to show a flame, but what a user expects where they are: ffmpeg
+# for --out FILE.mp4, libcec6 to switch a TV by HDMI-CEC (dlopened).
+set(CPACK_DEBIAN_CANDELA_PACKAGE_RECOMMENDS "ffmpeg, libcec6")
+set(CPACK_DEBIAN_CANDELA-TOOL_PACKAGE_RECOMMENDS "ffmpeg")
 set(CPACK_DEBIAN_CANDELA_PACKAGE_CONTROL_EXTRA
     ${pkg}/conffiles ${pkg}/postinst ${pkg}/prerm ${pkg}/postrm)
 include(CPack)

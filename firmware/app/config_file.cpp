@@ -1,5 +1,8 @@
 #include "app/config_file.h"
 
+#include <algorithm>
+
+#include "app/kiosk.h"
 #include "core/file_read.h"
 #include "scene/params.h"
 #include "scene/scene_file.h"
@@ -12,9 +15,24 @@ KioskConfig load_config_file(const std::string& path) {
   KioskConfig c;
   // path(): resolved against the config's folder, and refused now if it is
   // not a readable regular file (the scene reader then validates its contents).
-  c.scene = r.path("scene");
+  // A built-in scene's name ("eigen-fireplace": what the MQTT select offers
+  // and `state` reports) or a scene file's path.
+  c.scene = r.string("scene", "");
   if (r.has("scene") && c.scene.empty())
-    r.fail("scene", "expected a scene file's path, got an empty string");
+    r.fail("scene", "expected a built-in scene's name or a scene file's path, got an empty string");
+  if (!c.scene.empty() && is_scene_name(c.scene)) {
+    const std::vector<std::string> names = builtin_scene_names();
+    if (std::find(names.begin(), names.end(), c.scene) == names.end()) {
+      std::string list;
+      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+      r.fail("scene", "expected a built-in scene (" + list +
+                          ") or a scene file's path (with a '/' "
+                          "or ending in .toml), got \"" +
+                          echo_value(c.scene) + "\"");
+    }
+  } else {
+    c.scene = r.path("scene");
+  }
   c.display = r.string("display", "", {"auto", "drm", "window", "headless"});
   const bool has_mqtt = r.has("mqtt");
   ParamReader mqtt = r.table("mqtt");

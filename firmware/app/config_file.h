@@ -2,7 +2,8 @@
 // which scene and which display. Read like a scene (core/file_read.h: a
 // regular file, at most the scene limit; nesting bounded) and validated key
 // by key: errors are ConfigError "file: key: expected ...".
-//   scene = "/usr/share/candela/scenes/default.toml"   # relative: to this file
+//   scene = "default"              # a built-in scene, or a file: "/etc/candela/my.toml"
+//                                  # (with a '/' or ending in .toml; relative: to this file)
 //   display = "drm"                                    # auto | drm | window | headless
 //   [mqtt]                                             # optional: home automation
 //   host = "192.168.1.10"                              # (input/mqtt_bridge.h, README "MQTT")
@@ -19,7 +20,7 @@
 namespace candela {
 
 struct KioskConfig {
-  std::string scene;    // empty: the built-in default scene
+  std::string scene;    // a built-in scene's name or a file's full path; empty: "default"
   std::string display;  // empty: not given (the command line's, or auto)
   MqttSettings mqtt;    // enabled when the file has an [mqtt] table; .room: [room]
   Schedule schedule;    // [schedule] (app/schedule.h): on/off times, fades, night, scenes

@@ -19,10 +19,6 @@
 namespace candela {
 namespace {
 
-bool is_path(const std::string& s) {
-  return s.find('/') != std::string::npos || s.ends_with(".toml");
-}
-
 std::string builtin_names() {
   std::string out;
   for (const auto& n : builtin_scene_names()) out += (out.empty() ? "" : ", ") + n;
@@ -30,6 +26,10 @@ std::string builtin_names() {
 }
 
 }  // namespace
+
+bool is_scene_name(const std::string& label) {
+  return label.find('/') == std::string::npos && !label.ends_with(".toml");
+}
 
 std::vector<std::string> builtin_scene_names() {
   std::vector<std::string> out;
@@ -43,7 +43,7 @@ std::vector<std::string> builtin_scene_names() {
 }
 
 SceneDesc load_scene_by_label(const std::string& label) {
-  if (is_path(label)) return load_scene_file(label);
+  if (!is_scene_name(label)) return load_scene_file(label);
   if (scenes::find(label + ".toml").empty())
     throw ConfigError("scene \"" + echo_value(label) + "\"", "",
                       "no such built-in scene (built in: " + builtin_names() +

@@ -153,6 +153,9 @@ class Kiosk final : public KioskControl {
 // The scene a kiosk starts with: --test-pattern, --scene, the config's, or
 // the built-in default, as a label ("default", "test-pattern", a path).
 SceneDesc load_scene_by_label(const std::string& label);
+// A label is a scene's name (a built-in one) unless it has a '/' or ends in
+// ".toml" (a file's path).
+bool is_scene_name(const std::string& label);
 // The built-in scenes a person would pick (not the benchmarks'): names for
 // `scene NAME` and MQTT's scene select.
 std::vector<std::string> builtin_scene_names();

@@ -26,7 +26,9 @@ void KioskPost::draw(float old_alpha, float level) {
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glEnable(GL_BLEND);
-  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  // Colour only: the frame's alpha stays as drawn (a dimmed frame read back
+  // had alpha 191 at brightness 0.5, and PNG viewers showed it washed out).
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
   program_.use();
   glBindVertexArray(vao_.get());
   if (fade) {

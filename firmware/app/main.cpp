@@ -90,11 +90,11 @@ int main(int argc, char** argv) {
     test_clock = std::make_unique<ScaledWallClock>(opt.clock_start_ms, opt.clock_scale);
   const WallClock& wall = test_clock ? static_cast<const WallClock&>(*test_clock) : system_clock;
   // What the kiosk calls the scene (`state`, `reload`): a built-in's name or a path.
-  std::string label = opt.test_pattern    ? "test-pattern"
-                      : opt.scene.empty() ? "default"
-                      : opt.scene.find('/') == std::string::npos && !opt.scene.ends_with(".toml")
-                          ? "./" + opt.scene
-                          : opt.scene;
+  std::string label = opt.test_pattern           ? "test-pattern"
+                      : opt.scene.empty()        ? "default"
+                      : opt.scene_is_name        ? opt.scene
+                      : is_scene_name(opt.scene) ? "./" + opt.scene  // --scene FILE
+                                                 : opt.scene;
   const std::string config_label = label;
   if (opt.schedule.present && !opt.test_pattern && !opt.check) {
     const ScheduleNow now = evaluate_schedule(opt.schedule, local_time(wall.now_ms() / 1000));
@@ -102,10 +102,11 @@ int main(int argc, char** argv) {
   }
   SceneDesc desc;
   try {
-    desc = opt.test_pattern                              ? load_builtin_scene("test-pattern")
-           : opt.scene.empty() && label == "default"     ? load_builtin_scene("default")
-           : label == config_label && !opt.scene.empty() ? load_scene_file(opt.scene)
-                                                         : load_scene_by_label(label);
+    desc = opt.test_pattern                          ? load_builtin_scene("test-pattern")
+           : opt.scene.empty() && label == "default" ? load_builtin_scene("default")
+           : label == config_label && !opt.scene.empty() && !opt.scene_is_name
+               ? load_scene_file(opt.scene)
+               : load_scene_by_label(label);
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "candela: %s\n", e.what());
     return 2;

@@ -9,6 +9,8 @@
 #include <string>
 
 #include "app/config_file.h"
+#include "app/kiosk.h"
+#include "core/cli_usage.h"
 #include "core/error.h"
 #include "core/wxh.h"
 #include "input/gpio_line.h"
@@ -100,7 +102,7 @@ int parse_options(int argc, char** argv, Options& o) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   o.display.vsync = !no_vsync;
   o.scene_from_cli = !o.scene.empty();
@@ -111,7 +113,14 @@ int parse_options(int argc, char** argv, Options& o) {
     if (!end || *end)
       return usage_error("--clock-start", "a local time YYYY-MM-DDTHH:MM[:SS]", clock_start);
     tm.tm_isdst = -1;
-    o.clock_start_ms = static_cast<int64_t>(mktime(&tm)) * 1000;
+    // mktime normalises: February 30th would be March 2nd. A date that does
+    // not exist is refused, not moved (issue 34).
+    const struct tm asked = tm;
+    const time_t t = mktime(&tm);
+    if (t == static_cast<time_t>(-1) || tm.tm_mday != asked.tm_mday || tm.tm_mon != asked.tm_mon ||
+        tm.tm_year != asked.tm_year)
+      return usage_error("--clock-start", "a date that exists, YYYY-MM-DDTHH:MM[:SS]", clock_start);
+    o.clock_start_ms = static_cast<int64_t>(t) * 1000;
   } else if (app.count("--clock-scale")) {
     std::fprintf(stderr, "candela: --clock-scale needs --clock-start\n");
     return 2;
@@ -124,7 +133,10 @@ int parse_options(int argc, char** argv, Options& o) {
       std::fprintf(stderr, "candela: %s\n", e.what());
       return 2;
     }
-    if (o.scene.empty() && !o.test_pattern) o.scene = c.scene;
+    if (o.scene.empty() && !o.test_pattern) {
+      o.scene = c.scene;
+      o.scene_is_name = is_scene_name(c.scene);  // the config's "default": a built-in
+    }
     if (!c.display.empty() && app.count("--display") == 0) o.display.kind = c.display;
     o.mqtt = std::move(c.mqtt);
     o.schedule = std::move(c.schedule);

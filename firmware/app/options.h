@@ -25,6 +25,7 @@ struct Options {
   std::string log_level = "info";
   std::string control;  // control socket path (firmware/input/control_channel.h); empty: none
   MqttSettings mqtt;    // the --config file's [mqtt] (off without one)
+  bool scene_is_name = false;   // scene is a built-in's name (the config's); else a file
   bool scene_from_cli = false;  // --scene was given (wins over the config's, also on reload)
   Schedule schedule;            // the --config file's [schedule] (absent: always on)
   // The schedule's clock: the system's, or (testing a schedule) one that

@@ -37,6 +37,9 @@ class PngFolderSink final : public FrameSink {
   void write(const uint8_t* rgba) override {
     const size_t row = static_cast<size_t>(w_) * 4;
     for (int y = 0; y < h_; ++y) std::memcpy(&flipped_[row * y], rgba + row * (h_ - 1 - y), row);
+    // Opaque, as a screen shows it: whatever a blend left in the alpha
+    // channel (a dimmed frame's was 191) is no part of the picture.
+    for (size_t i = 3; i < flipped_.size(); i += 4) flipped_[i] = 255;
     char name[32];
     std::snprintf(name, sizeof name, "/frame_%06d.png", index_++);
     write_png(dir_ + name, w_, h_, 4, flipped_.data());

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/file_read.h"
+#include "core/json_parse.h"
 #include "core/log.h"
 #include "input/control_channel.h"
 #include "input/input_event.h"
@@ -210,14 +211,29 @@ void MqttBridge::publish(const std::string& topic, const std::string& payload, b
                     qos, retain);
 }
 
-// Volume, wind and candles lit: what a change of is published at once;
-// the frame counter alone is refreshed every 10 s.
+bool MqttStatePacer::due(const std::string& state, int64_t now_ns, bool refresh) {
+  std::string settings = state, moving;
+  if (std::optional<nlohmann::json> j = try_parse_json(state, nullptr); j && j->is_object()) {
+    for (const char* k : {"wind", "events"})
+      if (auto it = j->find(k); it != j->end()) moving += it->dump();
+    for (const char* k : {"frame", "step", "fps", "wind", "events"}) j->erase(k);
+    settings = j->dump();
+  }
+  const bool settings_changed = !any_ || settings != settings_;
+  const bool moved = moving != moving_ && now_ns - published_ns_ >= kMovingIntervalNs;
+  if (!refresh && !settings_changed && !moved) return false;
+  settings_ = std::move(settings);
+  moving_ = std::move(moving);
+  published_ns_ = now_ns;
+  any_ = true;
+  return true;
+}
+
+// Paced by MqttStatePacer: a command's answer (force) and the 10 s refresh
+// always go out.
 void MqttBridge::publish_state(bool force) {
   const std::string state = hub_.summary_json();
-  const size_t at = state.find("\"wind\"");
-  const std::string key = at == std::string::npos ? state : state.substr(at);
-  if (!force && key == last_state_) return;
-  last_state_ = key;
+  if (!pacer_.due(state, monotonic_ns(), force)) return;
   // QoS 0: the next state supersedes it, and no PUBACK comes back to be
   // held by the broker's Nagle (a command would then wait about 40 ms).
   publish(s_.prefix + "/state", state, true, 0);
@@ -374,6 +390,16 @@ void MqttBridge::on_message(const mosquitto_message* m) {
     reply = "error: " + verb +
             ": a retained message is not acted on (an event would repeat at every reconnect); "
             "publish it without retain";
+  } else if (verb == "scene" && !payload.empty() &&
+             std::find(s_.scenes.begin(), s_.scenes.end(), payload) == s_.scenes.end()) {
+    // A network client names a scene, never a file: a path would let it
+    // probe which files exist and read parse errors quoting them, and make
+    // the kiosk load whatever the path holds (issue 34). Files are the
+    // owner's: the config, --scene, the local control socket.
+    std::string names;
+    for (const auto& n : s_.scenes) names += (names.empty() ? "" : ", ") + n;
+    reply = "error: scene: over MQTT expected one of the scenes offered (" + names +
+            "); a file is named in the kiosk's config or on its control socket";
   } else {
     // The control socket's one parser and handling: "volume" + " 0.4".
     std::string line = verb;

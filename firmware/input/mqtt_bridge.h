@@ -88,6 +88,25 @@ bool mqtt_valid_topic_prefix(const std::string& prefix);
 // Home Assistant's discovery node id for a prefix: '/' -> '_'.
 std::string mqtt_node_id(const std::string& prefix);
 
+// When the retained state is published again (issue 34: it went out ~10
+// times a second while the wind moved, which a broker and Home Assistant's
+// recorder keep): at once when a setting changes (screen, scene,
+// brightness, volume, display, candles lit, errors...), at most once a
+// second for what moves on its own (the wind, the events count), and every
+// `refresh` regardless. The frame counter, step and fps alone never count as
+// a change. State texts are InputHub::summary_json()'s.
+class MqttStatePacer {
+ public:
+  static constexpr int64_t kMovingIntervalNs = 1'000'000'000;
+  // Whether `state` is to be published at `now_ns`; if so it is taken as published.
+  bool due(const std::string& state, int64_t now_ns, bool refresh);
+
+ private:
+  std::string settings_, moving_;
+  int64_t published_ns_ = 0;
+  bool any_ = false;
+};
+
 class MqttBridge {
  public:
   MqttBridge(MqttSettings settings, InputHub& hub);
@@ -132,7 +151,7 @@ class MqttBridge {
   bool reported_ = false;   // an outage already logged (client thread only)
   int last_refusal_ = 0;    // the CONNACK refusal last logged
   bool refused_ = false;    // the last CONNACK refused (client thread only)
-  std::string last_state_;  // client thread only
+  MqttStatePacer pacer_;    // client thread only
   std::atomic<uint64_t> connects_{0}, commands_{0};
   uint64_t room_seq_ = 0;            // client thread only
   int64_t room_invalid_logged_ = 0;  // when a bad room message was last logged

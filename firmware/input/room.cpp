@@ -5,6 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "core/json_parse.h"
 #include "input/mqtt_bridge.h"
 #include "scene/params.h"
 
@@ -72,8 +73,10 @@ std::optional<RoomGust> parse_room_gust(std::string_view payload, std::string* e
   if (payload.size() > RoomGust::kMaxMessage)
     return bad("expected at most " + std::to_string(RoomGust::kMaxMessage) + " bytes, got " +
                std::to_string(payload.size()));
-  const nlohmann::json j = nlohmann::json::parse(payload, nullptr, false);
-  if (j.is_discarded()) return bad("expected JSON, got something that does not parse");
+  std::string json_error;
+  const std::optional<nlohmann::json> parsed = try_parse_json(payload, &json_error);
+  if (!parsed) return bad("expected JSON: " + json_error);
+  const nlohmann::json& j = *parsed;
   if (!j.is_object()) return bad("expected a JSON object");
   auto field = [&](const char* key) -> const nlohmann::json* {
     const auto it = j.find(key);

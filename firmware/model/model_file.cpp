@@ -12,6 +12,7 @@
 #include <cstring>
 
 #include "core/file_read.h"
+#include "core/json_parse.h"
 
 namespace candela::model {
 
@@ -169,12 +170,14 @@ ModelFile ModelFile::parse(std::shared_ptr<const Storage> storage, const std::st
     throw ModelError(Kind::kTruncated, name, "header",
                      "declares " + std::to_string(hlen) + " header bytes but only " +
                          std::to_string(size - 8) + " follow");
-  nlohmann::json header;
-  try {
-    header = nlohmann::json::parse(p + 8, p + 8 + hlen);
-  } catch (const nlohmann::json::exception& e) {
-    throw ModelError(Kind::kHeader, name, "header", std::string("not valid JSON: ") + e.what());
-  }
+  // Nesting bounded before the tree is built: the checksum below re-serialises
+  // the header, recursively (core/json_parse.h).
+  std::string json_error;
+  std::optional<nlohmann::json> parsed = try_parse_json(
+      std::string_view(reinterpret_cast<const char*>(p + 8), static_cast<size_t>(hlen)),
+      &json_error);
+  if (!parsed) throw ModelError(Kind::kHeader, name, "header", json_error);
+  nlohmann::json header = std::move(*parsed);
   if (!header.is_object())
     throw ModelError(Kind::kHeader, name, "header", "expected a JSON object");
   auto meta_it = header.find("__metadata__");
@@ -300,7 +303,8 @@ const Tensor& ModelFile::require(std::string_view name, DType dtype,
   }
   if (!ok) {
     std::string s = "[";
-    for (int64_t want : shape) {  // appended piecewise: GCC 12's -Wrestrict misfires on "," + string
+    for (int64_t want :
+         shape) {  // appended piecewise: GCC 12's -Wrestrict misfires on "," + string
       if (s.size() > 1) s += ',';
       s += want < 0 ? std::string("*") : std::to_string(want);
     }

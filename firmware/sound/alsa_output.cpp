@@ -191,6 +191,7 @@ class AlsaOutput final : public SoundOutput {
         continue;
       }
       fill_period();
+      const auto write_start = std::chrono::steady_clock::now();
       snd_pcm_sframes_t done = 0;
       while (done < kPeriodFrames) {
         snd_pcm_sframes_t n = snd_pcm_writei(
@@ -207,9 +208,34 @@ class AlsaOutput final : public SoundOutput {
         }
         done += n;
       }
-      if (pcm_) periods_.fetch_add(1, std::memory_order_relaxed);
+      if (pcm_) {
+        periods_.fetch_add(1, std::memory_order_relaxed);
+        pace(write_start);
+      } else {
+        paced_ = 0;
+      }
     }
     close_device();
+  }
+
+  // A device that never blocks (ALSA's "null", a plugin that writes a file)
+  // took periods as fast as they were rendered: the thread spun at 33 times
+  // a silent run's CPU (issue 34). No period goes out more than the buffer
+  // ahead of the wall clock. A device that blocked on this write keeps time
+  // itself: the clock is set to it, so its drift never makes this wait.
+  void pace(std::chrono::steady_clock::time_point write_start) {
+    using namespace std::chrono;
+    constexpr auto kPeriod = microseconds(1'000'000LL * kPeriodFrames / SoundSynth::kSampleRate);
+    const auto now = steady_clock::now();
+    if (paced_ == 0 || now - write_start > kPeriod / 4) {
+      paced_ = 1;
+      pace_origin_ = now;
+      return;
+    }
+    const auto due = pace_origin_ + kPeriod * (paced_++ - settings_.buffer_periods);
+    if (due <= now) return;
+    std::unique_lock lock(mu_);
+    cv_.wait_until(lock, due, [&] { return stopping(); });
   }
 
   SoundSettings settings_;
@@ -220,6 +246,8 @@ class AlsaOutput final : public SoundOutput {
   int channels_ = 2;
   snd_pcm_t* pcm_ = nullptr;
   bool reported_ = false;
+  int64_t paced_ = 0;  // periods since pace_origin_ (0: not pacing yet)
+  std::chrono::steady_clock::time_point pace_origin_;
   SoundCue held_;
   // Producer side (the frame loop) only.
   SoundCue pending_;
@@ -229,7 +257,7 @@ class AlsaOutput final : public SoundOutput {
   std::atomic<bool> open_{false};
   std::atomic<uint64_t> attempts_{0};
   std::atomic<bool> stop_{false};
-  std::mutex mu_;  // the 2 s retry wait only; never taken while playing
+  std::mutex mu_;  // the 2 s retry wait and pace()'s (a device that does not block) only
   std::condition_variable cv_;
   std::thread thread_;
 };

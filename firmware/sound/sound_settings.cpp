@@ -1,5 +1,6 @@
 #include "sound/sound_settings.h"
 
+#include <cctype>
 #include <cstdint>
 
 #include "scene/params.h"
@@ -17,6 +18,15 @@ SoundSettings parse_sound(ParamReader& r, bool present) {
   for (char c : s.device)
     if (static_cast<unsigned char>(c) < 0x20)
       r.fail("device", "expected an ALSA PCM name without control characters");
+  // ALSA's file and tee plugins write the sound to any path the kiosk user
+  // can write (690 MB an hour; issue 34): a scene names a sound card.
+  std::string plugin = s.device.substr(0, s.device.find(':'));
+  for (char& c : plugin) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (plugin == "file" || plugin == "tee")
+    r.fail("device",
+           "expected a sound card's PCM (\"default\", \"hw:1,0\", ...), not a plugin that writes "
+           "a file (\"" +
+               plugin + ":\")");
   s.crackle_rate = r.fixed("crackle_rate", s.crackle_rate.to_double(), 0, 200);
   s.pop_rate = r.fixed("pop_rate", s.pop_rate.to_double(), 0, 50);
   s.knock_rate = r.fixed("knock_rate", s.knock_rate.to_double(), 0, 10);

@@ -28,6 +28,16 @@ namespace candela::story {
 // hard cuts are 1.5-2.2: its 300 frames are all about equally far apart), the
 // built-in candle's 2.80 (its hard cuts: median 5.3, 95th percentile 8.3).
 inline constexpr float kMinSeamBound = 2.0f;
+
+// Planning work is bounded, not only the story's size: a story past this many
+// component operations (a distance over 50 components is 50; the joints'
+// frame searches and the ARP's nearest training states are most of it) is
+// refused with a ConfigError naming where planning stopped, so `candela
+// --check` refuses it and no kiosk stalls on it. Measured: 5e8 a second on
+// one core of the 2-core development machine, so the limit is about 0.8 s
+// there (30 s of ARP synthesis on the built-in candle takes 1.7e8; repeats
+// are free, their joints are worked out once).
+inline constexpr uint64_t kMaxPlanWork = 400'000'000;
 inline constexpr double kSeamQuantile = 0.99;
 
 struct JointReport {
@@ -68,6 +78,8 @@ class StoryPlan {
   const std::vector<JointReport>& joints() const { return joints_; }
   const std::vector<PieceReport>& pieces() const { return pieces_; }
   float worst_seam() const;
+  // Component operations planning took (at most kMaxPlanWork).
+  uint64_t work() const { return work_; }
 
  private:
   friend StoryPlan plan_story(const StoryDesc&, const model::FlameModel&, uint64_t, bool);
@@ -76,6 +88,7 @@ class StoryPlan {
   double fps_ = 30;
   bool loop_ = true;
   float median_ = 1, bound_ = kMinSeamBound;
+  uint64_t work_ = 0;
   std::vector<int32_t> ref_;  // >= 0: model frame; < 0: row -1 - ref of rows_
   std::vector<float> rows_;
   std::vector<JointReport> joints_;
@@ -84,9 +97,9 @@ class StoryPlan {
 
 // Throws ConfigError(story file, key, problem) for what the model cannot play
 // (an unknown clip, a range outside it, arp without Learning Flames, a story
-// longer than kMaxStoryFrames). `force_loop`: plan the loop joint even when
-// the story says loop = false (the runtime always loops). The model must
-// outlive the plan.
+// longer than kMaxStoryFrames or planning longer than kMaxPlanWork). `force_loop`: plan the loop
+// joint even when the story says loop = false (the runtime always loops). The model must outlive
+// the plan.
 StoryPlan plan_story(const StoryDesc& story, const model::FlameModel& m, uint64_t seed,
                      bool force_loop = false);
 

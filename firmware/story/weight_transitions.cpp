@@ -31,6 +31,7 @@ WeightTable WeightTable::of(const model::FlameModel& m, int dims) {
 }
 
 float WeightTable::distance(const float* a, const float* b) const {
+  charge(static_cast<uint64_t>(dims_));
   double d = 0;
   for (int k = 0; k < dims_; ++k) {
     const double x = static_cast<double>(a[k]) - b[k];

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,9 +40,26 @@ class WeightTable {
   // The q-quantile (0..1) of those steps, in median steps.
   float step_quantile_ratio(double q) const;
 
+  // Work done with the table, in component operations (a distance over 50
+  // components is 50), and a limit past which charge() and distance() throw
+  // WorkLimitReached: what bounds a story's planning (story_plan.h).
+  void set_work_limit(uint64_t limit) { work_limit_ = limit; }
+  uint64_t work() const { return work_; }
+  void charge(uint64_t ops) const {
+    work_ += ops;
+    if (work_ > work_limit_) throw WorkLimitReached(work_limit_);
+  }
+
+  struct WorkLimitReached : std::runtime_error {
+    explicit WorkLimitReached(uint64_t limit)
+        : std::runtime_error("more than " + std::to_string(limit) + " component operations") {}
+  };
+
  private:
   std::span<const float> w_;
   int stride_, dims_, frames_;
+  mutable uint64_t work_ = 0;
+  uint64_t work_limit_ = UINT64_MAX;
   std::vector<int> clip_of_, clip_first_, clip_end_;
 };
 

@@ -273,6 +273,13 @@ TEST(LiveControl, BrightnessDimsTheFrames) {
   const double before = stats_of(frame_png(out, 1)).mean;
   const double after = stats_of(frame_png(out, static_cast<int>(at) + 12)).mean;  // 0.4 s later
   EXPECT_NEAR(after / before, 0.25, 0.03) << before << " -> " << after;
+  // Dimmed, not see-through (issue 34): the frame's alpha is opaque (it was
+  // 191 at brightness 0.5, and viewers showed washed-out frames).
+  const Image dimmed = read_png(frame_png(out, static_cast<int>(at) + 12));
+  ASSERT_EQ(dimmed.channels, 4);
+  int see_through = 0;
+  for (size_t i = 3; i < dimmed.pixels.size(); i += 4) see_through += dimmed.pixels[i] != 255;
+  EXPECT_EQ(see_through, 0) << "pixels with alpha below 255 in a dimmed frame";
 }
 
 // `screen off`: no frame is drawn or presented and candela sleeps; `screen

@@ -144,7 +144,14 @@ def soak(candela, scene, hours, size, rss_mb, tmp, repeats=False, seed=None, fra
     # are of the exit (GL torn down, RSS falling), not of the run.
     final = max((x[3] for x in samples), default=0)
     samples = [x for x in samples if x[3] < final] or samples
-    warm_samples = [x for x in samples if x[0] - start >= max(0.05 * wall, 5.0)]
+    # The eigen flames' frame cache fills as the walk first visits each model
+    # frame (1 MB steps, the last at frame ~175 of the eigen fireplace): the
+    # warm-up is also the first 400 frames (about 7 min of animation at --fps
+    # 1), however fast the machine draws them.
+    w, h = (int(v) for v in size.split("x"))
+    warm_bytes = min(400, frames // 2) * (6 + w * h * 3)  # a .y4m 4:4:4 frame and its FRAME line
+    warm_samples = [x for x in samples
+                    if x[0] - start >= max(0.05 * wall, 5.0) and x[3] >= warm_bytes]
     if len(warm_samples) < 2:
         warm_samples = samples or [(start, 0, 0, 0)]
     warm = [(t, kb / 1024) for t, kb, _, _ in warm_samples]

@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/json.h"
+#include "core/json_parse.h"
 #include "core/random.h"
 #include "core/wxh.h"
 
@@ -20,6 +21,33 @@ namespace candela {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The one bounded JSON parse: kMaxJsonDepth levels parse (and the tree can
+// be re-serialised), one more is refused naming the file, as is text that is
+// not JSON; nothing of the text is echoed.
+TEST(JsonParse, NestingIsBoundedBeforeATreeIsBuilt) {
+  const auto nested = [](int depth) {
+    return std::string(depth, '[') + "1" + std::string(depth, ']');
+  };
+  const nlohmann::json ok = parse_json(nested(kMaxJsonDepth), "f.json");
+  EXPECT_EQ(ok.dump(), nested(kMaxJsonDepth));
+  try {
+    parse_json(nested(kMaxJsonDepth + 1), "f.json", "header");
+    FAIL() << "parsed";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "f.json: header: expected JSON nested at most 32 arrays or objects deep, got deeper");
+  }
+  std::string error;
+  EXPECT_FALSE(try_parse_json(std::string(1 << 20, '['), &error));
+  EXPECT_NE(error.find("nested at most 32"), std::string::npos) << error;
+  EXPECT_FALSE(try_parse_json("{\"a\": \"secret", &error));
+  EXPECT_NE(error.find("not valid JSON"), std::string::npos) << error;
+  EXPECT_EQ(error.find("secret"), std::string::npos) << error;
+  const auto ordered = try_parse_json<nlohmann::ordered_json>(R"({"b": 1, "a": [2]})", &error);
+  ASSERT_TRUE(ordered);
+  EXPECT_EQ(ordered->dump(), R"({"b":1,"a":[2]})");
+}
 
 TEST(Wxh, PlainDigitsWithinBounds) {
   const WxH lo{16, 16}, hi{16384, 16384};

@@ -295,8 +295,21 @@ def case_commands():
           "the state reports the scene")
     client.send("scene", "no-such")
     r = client.wait(PREFIX + "/reply")
-    check(r is not None and r.startswith('error: scene "no-such": no such built-in scene'),
-          "an unknown scene is refused", r)
+    check(r is not None and r.startswith("error: scene: over MQTT expected one of the scenes offered (")
+          and "eigen-fireplace" in r, "an unknown scene is refused, naming the scenes offered", r)
+    # Issue 34: a network client names scenes, never files: no path is
+    # opened, so no reply tells whether a file exists or quotes it.
+    secret = os.path.join(WORK, "secret.toml")
+    with open(secret, "w") as f:
+        f.write("hunter2-is-the-password\n")
+    for path in (secret, "/etc/passwd", "/nonexistent/x.toml", "../default"):
+        client.send("scene", path)
+        r = client.wait(PREFIX + "/reply")
+        check(r is not None and r.startswith("error: scene: over MQTT expected one of the scenes offered")
+              and "hunter2" not in r and "exist" not in r and "regular file" not in r,
+              "set/scene %s is refused before any file is opened" % path, r)
+    st = client.wait(PREFIX + "/state", lambda x: json.loads(x)["scene"] == "default")
+    check(st is not None, "and the running scene stays", st)
     client.send("volume", "0.25")
     check(client.wait(PREFIX + "/reply") == "ok", "set/volume 0.25 answers ok")
     st = client.wait(PREFIX + "/state", lambda x: abs(json.loads(x)["volume"] - 0.25) < 1e-3)

@@ -136,3 +136,19 @@ TEST(Ingest, ManifestKeysOfTheWrongTypeNameTheFileAndKey) {
             "d/manifest.json: clips[0].source: expected a string");
   EXPECT_EQ(error_of("{" + head + clip + "}]}"), "parsed");
 }
+
+// Issue 34: a deeply nested manifest crashed `candela-tool build` (a
+// recursive copy of the tree); it is refused while parsing, naming the file.
+TEST(Ingest, DeeplyNestedManifestIsRefusedNamingTheFile) {
+  const int depth = 100000;
+  const std::string text = R"({"format": "candela-dataset", "version": 1, "x": )" +
+                           std::string(depth, '[') + std::string(depth, ']') + "}";
+  try {
+    ct::parse_manifest(text, "d/manifest.json");
+    FAIL() << "parsed";
+  } catch (const candela::ConfigError& e) {
+    EXPECT_EQ(
+        std::string(e.what()),
+        "d/manifest.json: expected JSON nested at most 32 arrays or objects deep, got deeper");
+  }
+}

@@ -219,6 +219,22 @@ TEST(ModelFile, NotAModelIsAHeaderError) {
   EXPECT_EQ(error_of(png), Kind::kHeader);
 }
 
+// Issue 34: 100,000 nested arrays in a 200 KB header crashed the reader with
+// SIGSEGV (the checksum re-serialises the header recursively) before the
+// checksum could refuse it. The nesting is refused while parsing, by name.
+TEST(ModelFile, DeeplyNestedHeaderIsAHeaderErrorNotACrash) {
+  const int depth = 100000;
+  const std::string text = R"({"__metadata__": {"format": "candela-model", "version": 1}, "x": )" +
+                           std::string(depth, '[') + std::string(depth, ']') + "}";
+  std::vector<uint8_t> b(8);
+  for (int i = 0; i < 8; ++i) b[i] = static_cast<uint8_t>(text.size() >> (8 * i));
+  b.insert(b.end(), text.begin(), text.end());
+  std::string msg;
+  EXPECT_EQ(error_of(b, &msg), Kind::kHeader);
+  EXPECT_NE(msg.find("nested at most 32"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("header"), std::string::npos) << msg;
+}
+
 TEST(ModelFile, InconsistentContentsAreReported) {
   // Correct checksum, but the info claims 4 components while the tensors hold 3.
   cm::ModelWriter mw = small_model();

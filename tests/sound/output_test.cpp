@@ -4,9 +4,11 @@
 // back here; no snd-aloop / snd-dummy module can be loaded on this host);
 // a missing device is logged and the frame loop's side never waits.
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -136,6 +138,29 @@ TEST(SoundOutput, AlsaPlaysThroughTheFilePlugin) {
   EXPECT_EQ(mismatched, 0u) << "mono on both channels";
   // A fire of 2 at volume 0.6: clearly audible (above -40 dBFS RMS).
   EXPECT_GT(std::sqrt(energy / static_cast<double>(frames - last)) / 32768.0, 0.01);
+}
+
+// Issue 34: on a device that never blocks (ALSA's "null") the sound thread
+// took periods as fast as it could render them, at 33 times a silent run's
+// CPU. It now writes no further ahead of the wall clock than the buffer: over
+// a measured half second, about 25 periods of 20 ms, not thousands.
+TEST(SoundOutput, ADeviceThatNeverBlocksIsPacedByTheClock) {
+  SoundSettings s;
+  s.enabled = true;
+  s.device = "null";
+  auto out = open_sound_device(s, 60, 4);
+  while (out->stats().periods < static_cast<uint64_t>(s.buffer_periods) + 2) out->push(cue_at(0));
+  const auto t0 = std::chrono::steady_clock::now();
+  const uint64_t p0 = out->stats().periods;
+  poll(nullptr, 0, 500);  // a measuring window: the rate over time is what is measured
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const uint64_t periods = out->stats().periods - p0;
+  out->finish();
+  EXPECT_LE(static_cast<double>(periods), seconds / 0.020 + 2)
+      << periods << " periods in " << seconds << " s";
+  EXPECT_GE(static_cast<double>(periods), seconds / 0.020 - 5)
+      << "the sound still plays in real time";
 }
 
 TEST(SoundOutput, MissingDeviceIsLoggedAndNothingWaits) {

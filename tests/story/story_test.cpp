@@ -274,6 +274,62 @@ TEST(StoryPlan, ArpSegmentsShowTrainingFramesAndFollowTheSeed) {
               a.pieces()[0].max_step_ratio);
 }
 
+// Issue 34: the story limits did not bound the planning work. Each bridge or
+// grow joint searches the model's frames, and repeats multiplied the joints:
+// a valid story on the built-in candle planned for 72 s, on the thread that
+// reads the control socket. A repeat's joint is now worked out once and
+// replayed, so 100 repeats cost about what 2 do, and give the same joint.
+TEST(StoryPlan, RepeatsReplayTheirJointRatherThanPlanItAgain) {
+  const model::FlameModel m = test::two_clip_model();
+  auto story = [](int repeat) {
+    return "model = \"x\"\n[[segment]]\nclip = \"T1\"\n[[segment]]\nclip = \"T2\"\nto = 60\n"
+           "repeat = " +
+           std::to_string(repeat) + "\ntransition = { method = \"grow\" }\n";
+  };
+  const StoryPlan two = plan_story(load_story_text(story(2), "t"), m, 1);
+  const StoryPlan hundred = plan_story(load_story_text(story(100), "t"), m, 1);
+  ASSERT_EQ(two.joints().size(), 3u);        // T1 > T2, T2 repeat, loop T2 > T1
+  ASSERT_EQ(hundred.joints().size(), 101u);  // T1 > T2, 99 repeats, the loop
+  const JointReport& repeat = two.joints()[1];
+  EXPECT_GT(repeat.inserted, 0) << "T2's end and start are far apart: the joint goes round";
+  for (size_t k = 1; k < 100; ++k) {
+    const JointReport& j = hundred.joints()[k];
+    ASSERT_EQ(j.what, "segment[1] repeat " + std::to_string(k + 1));
+    EXPECT_EQ(j.inserted, repeat.inserted) << j.what;
+    EXPECT_EQ(j.how, repeat.how) << j.what;
+    EXPECT_FLOAT_EQ(j.seam_ratio, repeat.seam_ratio) << j.what;
+    for (int i = 0; i <= j.inserted; ++i)
+      ASSERT_EQ(hundred.model_frame(j.first + i), two.model_frame(repeat.first + i)) << j.what;
+  }
+  std::printf("planning work: 2 repeats %llu, 100 repeats %llu component operations\n",
+              static_cast<unsigned long long>(two.work()),
+              static_cast<unsigned long long>(hundred.work()));
+  EXPECT_LT(hundred.work(), 2 * two.work());
+}
+
+// Planning past kMaxPlanWork is refused as a ConfigError naming where it
+// stopped, so `candela --check` fails on the story and no kiosk stalls on it:
+// 600 s of ARP synthesis on the built-in candle (each of its 36,000 states
+// compared with every training state) is past it; 30 s is well within.
+TEST(StoryPlan, PlanningPastTheWorkLimitIsRefusedNamingWhere) {
+  const model::FlameModel m =
+      model::FlameModel::load(std::string(CANDELA_SOURCE_DIR) + "/firmware/models/default.cmodel");
+  const std::string head =
+      "model = \"x\"\n[[segment]]\nclip = \"" + m.clips.front().name + "\"\n[[segment]]\n";
+  const StoryPlan ok = plan_story(load_story_text(head + "arp = 30\n", "t"), m, 1);
+  EXPECT_LT(ok.work(), kMaxPlanWork / 2);
+  try {
+    plan_story(load_story_text(head + "arp = 600\n", "tour.toml"), m, 1);
+    FAIL() << "planned";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("tour.toml: segment[1]: expected a story that plans "
+                                          "within 400 million component operations",
+                                          0),
+              0u)
+        << e.what();
+  }
+}
+
 TEST(StoryPlayer, PlaysThePlannedFramesAndLoopsWithoutASeam) {
   const model::FlameModel m = test::two_clip_model();
   const StoryPlan plan =

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/cli_usage.h"
 #include "subcommand.h"
 
 namespace {
@@ -56,8 +57,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version exit 0; no or an unknown subcommand exits 2.
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
+    return candela::usage_exit(app, e);
   }
   for (const Subcommand& c : kSubcommands) {
     const CLI::App* sub = app.get_subcommand(c.name);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "cli_parse.h"
+#include "core/cli_usage.h"
 #include "flame_photo.h"
 #include "subcommand.h"
 
@@ -25,7 +26,7 @@ int run_flame_photo(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   try {
     int w = 0, h = 0;

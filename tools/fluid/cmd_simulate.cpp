@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "cli_parse.h"
+#include "core/cli_usage.h"
 #include "core/error.h"
 #include "simulate_run.h"
 #include "subcommand.h"
@@ -138,7 +139,7 @@ int run_simulate(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   try {
     SimulateOptions opt;

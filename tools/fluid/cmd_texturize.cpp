@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cli_parse.h"
+#include "core/cli_usage.h"
 #include "core/error.h"
 #include "fire_animation.h"
 #include "sim_dataset.h"
@@ -62,7 +63,7 @@ int run_texturize(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   try {
     validate(p);

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "candela-tool/subcommand.h"
+#include "core/cli_usage.h"
 #include "core/error.h"
 #include "measure/measure.h"
 
@@ -50,7 +51,7 @@ int parse(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return candela::usage_exit(app, e);
   }
   return -1;
 }

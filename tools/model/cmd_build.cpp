@@ -1,11 +1,27 @@
 // candela-tool build DATASET --out MODEL
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 
+#include "core/cli_usage.h"
+#include "model/flame_model.h"
 #include "model_build.h"
 #include "subcommand.h"
 
 namespace {
+
+// CLI::Range lets NaN through (every comparison with it is false).
+CLI::Validator finite_range(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || v < lo || v > hi)
+          return "expected a number in [" + CLI::detail::to_string(lo) + ", " +
+                 CLI::detail::to_string(hi) + "], got " + text;
+        return "";
+      },
+      "FLOAT in [" + CLI::detail::to_string(lo) + " - " + CLI::detail::to_string(hi) + "]");
+}
 
 int run_build(int argc, char** argv) {
   CLI::App app{"Build a flame model (EigenFires PCA, motion graph) from a dataset made by ingest",
@@ -15,40 +31,46 @@ int run_build(int argc, char** argv) {
   int bits = 16;
   app.add_option("DATASET", dataset, "dataset folder")->required();
   app.add_option("--out", out, "model file to write")->required();
-  auto* comp = app.add_option("--components", opt.pca.components, "number of EigenFires E");
+  auto* comp = app.add_option("--components", opt.pca.components, "number of EigenFires E")
+                   ->check(CLI::Range(1, candela::model::kMaxPlayedComponents));
   app.add_option("--variance", opt.pca.variance,
                  "else: fewest EigenFires explaining this share of the variance")
       ->check(CLI::Range(0.5, 1.0))
       ->capture_default_str()
       ->excludes(comp);
   app.add_option("--max-components", opt.pca.max_components, "cap for --variance")
+      ->check(CLI::Range(1, candela::model::kMaxPlayedComponents))
       ->capture_default_str();
   app.add_option("--holdout", opt.holdout_every,
                  "leave every n-th frame out of the fit to measure PSNR (0: none)")
+      ->check(CLI::IsMember({0}) | CLI::Range(2, 1 << 24))
       ->capture_default_str();
   app.add_option("--bits", bits, "eigen-image quantisation: 8 or 16")
       ->check(CLI::IsMember({8, 16}))
       ->capture_default_str();
   app.add_option("--theta-min", opt.graph.theta_min,
-                 "smallest step of the motion graph (default: half the median step)");
+                 "smallest step of the motion graph (default, 0: half the median step)")
+      ->check(finite_range(0.0, 1e30));
   app.add_option("--successors", opt.graph.max_successors, "jumps per frame in the motion graph")
+      ->check(CLI::Range(1, candela::model::kMaxSuccessors - 1))
       ->capture_default_str();
   app.add_option("--min-jump", opt.graph.min_jump, "a jump lands at least this many frames away")
+      ->check(CLI::Range(1, 1 << 24))
       ->capture_default_str();
   app.add_option("--hue", opt.colour.hue, "default colour: hue (degrees)")
-      ->check(CLI::Range(0.0, 360.0))
+      ->check(finite_range(0.0, 360.0))
       ->capture_default_str();
   app.add_option("--saturation", opt.colour.saturation, "default colour: saturation")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(finite_range(0.0, 1.0))
       ->capture_default_str();
   app.add_option("--glow-strength", opt.colour.glow_strength,
                  "default glow: strength (an additive blurred copy; real fire footage has "
                  "little, and any glow fills the dark gaps between tongues)")
-      ->check(CLI::Range(0.0, 4.0))
+      ->check(finite_range(0.0, 4.0))
       ->capture_default_str();
   app.add_option("--glow-radius", opt.colour.glow_radius,
                  "default glow: radius, fraction of the image height")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(finite_range(0.0, 1.0))
       ->capture_default_str();
   bool no_flames = false;
   app.add_flag("--no-learning-flames", no_flames,
@@ -59,6 +81,7 @@ int run_build(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--ne", opt.flames.ne, "Learning Flames: eigenflames")->capture_default_str();
   app.add_option("--particles", opt.flames.arp.particles, "ARP learning: condensation particles Nc")
+      ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   app.add_option("--order", opt.flames.arp.order, "ARP order K")
       ->check(CLI::Range(1, candela::model::kMaxArpOrder))
@@ -67,7 +90,7 @@ int run_build(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   opt.learning_flames = !no_flames;
   // Before the dataset is read: options whose model the runtime would refuse.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/cli_usage.h"
 #include "core/error.h"
 #include "ingest.h"
 #include "subcommand.h"
@@ -47,7 +48,7 @@ int run_ingest(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   for (const auto& l : labels) opt.labels.push_back(candela::tools::parse_label(l, "--label"));
   std::vector<candela::tools::SourceClip> clips;

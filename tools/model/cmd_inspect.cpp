@@ -2,7 +2,10 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "core/cli_usage.h"
+#include "core/error.h"
 #include "model/flame_model.h"
+#include "named_model.h"
 #include "subcommand.h"
 
 namespace {
@@ -12,16 +15,16 @@ int run_inspect(int argc, char** argv) {
                "candela-tool inspect"};
   std::string path;
   bool json = false;
-  app.add_option("MODEL", path, "model file")->required();
+  app.add_option("MODEL", path, "model file, or builtin:candle / builtin:fire")->required();
   app.add_flag("--json", json, "print the whole metadata as JSON");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   namespace cm = candela::model;
   try {
-    cm::FlameModel m = cm::FlameModel::load(path);
+    cm::FlameModel m = candela::tools::load_named_model(path);
     const cm::ModelFile& f = m.file();
     std::printf("%s: candela-model version %d, %zu bytes (header %zu), crc32 %08x\n", path.c_str(),
                 f.version(), f.file_size(), f.header_bytes(), f.checksum());
@@ -63,6 +66,9 @@ int run_inspect(int argc, char** argv) {
     return 0;
   } catch (const cm::ModelError& e) {
     std::fprintf(stderr, "candela-tool inspect: %s [%s]\n", e.what(), cm::to_string(e.kind()));
+    return 1;
+  } catch (const candela::ConfigError& e) {  // builtin:NAME that is none
+    std::fprintf(stderr, "candela-tool inspect: %s\n", e.what());
     return 1;
   }
 }

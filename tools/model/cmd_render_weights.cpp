@@ -3,8 +3,10 @@
 #include <cstdio>
 
 #include "colour_flags.h"
+#include "core/cli_usage.h"
 #include "core/image.h"
 #include "model/flame_model.h"
+#include "named_model.h"
 #include "render.h"
 #include "subcommand.h"
 
@@ -21,7 +23,7 @@ int run_render_weights(int argc, char** argv) {
   std::vector<std::string> sets;
   bool gray = false, zero = false;
   candela::tools::ColourFlags colour;
-  app.add_option("MODEL", path, "model file")->required();
+  app.add_option("MODEL", path, "model file, or builtin:candle / builtin:fire")->required();
   app.add_option("--out", out, "PNG to write")->required();
   auto* fr = app.add_option("--frame", frame, "start from this stored frame's weights");
   app.add_option("--weights", weights,
@@ -35,10 +37,10 @@ int run_render_weights(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   namespace cm = candela::model;
-  cm::FlameModel m = cm::FlameModel::load(path);
+  cm::FlameModel m = candela::tools::load_named_model(path);
   std::vector<float> w(m.components(), 0.0f);
   if (frame >= 0) {
     if (frame >= m.frames())

@@ -4,10 +4,12 @@
 #include <memory>
 
 #include "colour_flags.h"
+#include "core/cli_usage.h"
 #include "core/error.h"
 #include "display/frame_writer.h"
 #include "embedded_models.h"
 #include "model/flame_model.h"
+#include "named_model.h"
 #include "render.h"
 #include "story/story_plan.h"
 #include "subcommand.h"
@@ -18,22 +20,10 @@ namespace cm = candela::model;
 namespace cs = candela::story;
 
 // A model as the story names it: builtin:NAME from the models embedded in
-// candela (the same bytes), else a file.
+// candela (the same bytes), else a file; errors name the story's key.
 cm::FlameModel open_model(const cs::StoryDesc& story) {
-  const std::string path = cs::story_model_path(story);
-  if (path.rfind("builtin:", 0) == 0) {
-    std::string name = path.substr(8);
-    if (name == "candle") name = "default";
-    const auto bytes = candela::eigen_models::find(name + ".cmodel");
-    if (bytes.empty())
-      throw candela::ConfigError(
-          story.file, "model",
-          "expected a built-in model (builtin:candle, builtin:fire), got \"" + story.model + "\"");
-    return cm::FlameModel::from(cm::ModelFile::from_bytes(
-        std::vector<uint8_t>(bytes.begin(), bytes.end()), "<built-in " + name + ">"));
-  }
   try {
-    return cm::FlameModel::load(path);
+    return candela::tools::load_named_model(cs::story_model_path(story));
   } catch (const std::exception& e) {
     throw candela::ConfigError(story.file, "model", e.what());
   }
@@ -63,7 +53,7 @@ int run_story(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   if (out.empty() && !no_render) throw std::invalid_argument("--out: say where (or --no-render)");
   const cs::StoryDesc story = cs::open_story(path);

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/cli_usage.h"
 #include "core/image.h"
 #include "learning_flames.h"
 #include "model/flame_model.h"
@@ -39,7 +40,7 @@ int run_synth(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   namespace ct = candela::tools;
   candela::model::FlameModel fm = candela::model::FlameModel::load(path);

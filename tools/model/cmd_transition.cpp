@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/cli_usage.h"
 #include "core/image.h"
 #include "model_views.h"
 #include "render.h"
@@ -41,7 +42,7 @@ int run_transition(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   namespace cm = candela::model;
   namespace ct = candela::tools;

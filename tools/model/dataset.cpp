@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/json_parse.h"
 
 namespace candela::tools {
 
@@ -72,12 +73,8 @@ uint8_t encode_srgb8(float linear) {
 }
 
 Dataset parse_manifest(std::string_view text, const std::string& mf, bool* linear) {
-  nlohmann::json m;
-  try {
-    m = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw ConfigError(mf, "", std::string("not valid JSON: ") + e.what());
-  }
+  // Nesting bounded before the tree is built (core/json_parse.h).
+  const nlohmann::json m = parse_json(text, mf);
   // Compared as JSON, not read with value(), which throws a type error
   // naming no file for a key of another type (found by dataset_manifest_fuzz).
   if (!m.is_object() || !m.contains("format") || m["format"] != "candela-dataset")

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/cli_usage.h"
 #include "core/error.h"
 #include "noise/noise_synth.h"
 
@@ -77,7 +78,7 @@ int run_noise_command(int argc, char** argv, const char* program) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   if (!analyze_path.empty()) {
     try {

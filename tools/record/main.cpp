@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "core/cli_usage.h"
 #include "core/wxh.h"
 #include "preview.h"
 #include "recorder.h"
@@ -77,8 +78,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // --help and --version exit 0; a bad command line exits 2 as documented.
-    const int rc = app.exit(e);
-    return rc == 0 ? 0 : kExitUsage;
+    return candela::usage_exit(app, e);
   }
   // --size and --preview-size: WxH, each side 16 to 8192.
   const auto parse_size = [](const std::string& text, const char* option, const char* example,

@@ -5,6 +5,8 @@
 #include <ctime>
 #include <nlohmann/json.hpp>
 
+#include "core/json_parse.h"
+
 namespace candela::record {
 
 using Json = nlohmann::ordered_json;
@@ -20,8 +22,8 @@ Json number(double v) {
 // Text that is already JSON (a control's value, the preview's report); kept
 // as a string if it is not valid JSON.
 Json embedded(const std::string& text) {
-  Json j = Json::parse(text, nullptr, /*allow_exceptions=*/false);
-  return j.is_discarded() ? Json(text) : j;
+  std::optional<Json> j = try_parse_json<Json>(text, nullptr);
+  return j ? std::move(*j) : Json(text);
 }
 
 // The frames array, written directly: it holds every frame recorded (108000

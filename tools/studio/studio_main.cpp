@@ -5,6 +5,7 @@
 #include <exception>
 #include <optional>
 
+#include "core/cli_usage.h"
 #include "core/wxh.h"
 #include "studio.h"
 
@@ -31,7 +32,7 @@ int run(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return candela::usage_exit(app, e);
   }
   if (!size.empty()) {
     const std::optional<candela::WxH> s = candela::parse_wxh(size, {200, 150}, {8192, 8192});

@@ -128,7 +128,8 @@ class EigenFlame final : public Element {
   // `batch`: the scene's, shared with its other eigen-flames (null: one of its own).
   EigenFlame(const EigenFlameSettings& s, std::shared_ptr<const EigenModel> model, Vec3 position,
              uint64_t seed, EigenBatch* batch,
-             std::shared_ptr<const story::StoryDesc> story = nullptr)
+             std::shared_ptr<const story::StoryDesc> story = nullptr,
+             std::shared_ptr<const story::StoryPlan> planned = nullptr, uint64_t planned_seed = 0)
       : s_(s),
         model_(std::move(model)),
         position_(position),
@@ -153,9 +154,13 @@ class EigenFlame final : public Element {
     if (s.driver == EigenDriver::kStory && story) {
       // The whole story planned now (its own seed, else the element's); the
       // runtime always loops it, through the first segment's transition.
-      const story::StoryPlan plan =
-          story::plan_story(*story, m, story->has_seed ? story->seed : seed, true);
-      story_ = std::make_unique<story::StoryPlayer>(plan, m.components(), Fixed::from_ratio(1, 2));
+      // Planned once: the parse's plan where its seed is this element's.
+      const uint64_t story_seed = story->has_seed ? story->seed : seed;
+      std::shared_ptr<const story::StoryPlan> plan = planned;
+      if (!plan || planned_seed != story_seed)
+        plan = std::make_shared<const story::StoryPlan>(
+            story::plan_story(*story, m, story_seed, true));
+      story_ = std::make_unique<story::StoryPlayer>(*plan, m.components(), Fixed::from_ratio(1, 2));
       renderer_ =
           std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen), s.layout,
                                           e, look, edited(story_->weights()), batch);
@@ -363,7 +368,8 @@ std::shared_ptr<const EigenModel> default_eigen_model() { return builtin_eigen_m
 std::unique_ptr<Element> EigenFlameSpec::create(const SceneContext& context) const {
   EigenBatch* batch = context.resources ? &context.resources->get<EigenBatch>() : nullptr;
   try {
-    return std::make_unique<EigenFlame>(settings, model, position, context.seed, batch, story);
+    return std::make_unique<EigenFlame>(settings, model, position, context.seed, batch, story,
+                                        story_plan, story_plan_seed);
   } catch (const std::exception& e) {
     // A model the reader accepted but this GPU cannot hold (texture size, ...):
     // play the built-in one rather than leave the flame out.
@@ -476,8 +482,11 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
       } catch (const std::exception& e) {
         throw ConfigError(desc->file, "model", e.what());
       }
-      // Planned once to find its errors (none depends on the seed; create() plans again).
-      story::plan_story(*desc, *spec->model->model, desc->seed, true);
+      // Planned now, to find its errors (none depends on the seed) and to be
+      // played by create() where the element's seed is the story's.
+      spec->story_plan = std::make_shared<const story::StoryPlan>(
+          story::plan_story(*desc, *spec->model->model, desc->seed, true));
+      spec->story_plan_seed = desc->seed;
       spec->story = std::move(desc);
     } catch (const std::exception& e) {
       spec->story_error = r.key_path("story") + ": " + e.what();

@@ -62,6 +62,7 @@
 #include "gl/math.h"
 #include "scene/element.h"
 #include "story/story_file.h"
+#include "story/story_plan.h"
 
 namespace candela {
 
@@ -128,7 +129,11 @@ class EigenFlameSpec final : public ElementSpec {
   std::shared_ptr<const EigenModel> model;  // never null: the default if the named one failed
   std::string model_error;                  // why the named model was not used (empty: it was)
   std::shared_ptr<const story::StoryDesc> story;  // driver kStory: read and planned once already
-  std::string story_error;                        // why the named story is not played
+  // The plan made while parsing (with story_plan_seed): create() plays it
+  // where the element's seed gives the same plan, rather than planning again.
+  std::shared_ptr<const story::StoryPlan> story_plan;
+  uint64_t story_plan_seed = 0;
+  std::string story_error;  // why the named story is not played
 };
 
 std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& reader);

@@ -1,0 +1,24 @@
+// One way every Candela program reports a bad command line (CLI11): on
+// stderr "PROGRAM: error: WHAT" and where to find --help, and exit status 2,
+// as the POSIX utilities do; --help and --version print and exit 0. (CLI11's
+// own exit statuses were 105, 106, 109... depending on the error.)
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace candela {
+
+inline constexpr int kUsageExitStatus = 2;
+
+// `app`'s name is the program as the user typed it ("candela-tool build").
+inline int usage_exit(CLI::App& app, const CLI::ParseError& e) {
+  const std::string program = app.get_name();
+  app.failure_message([program](const CLI::App*, const CLI::Error& error) {
+    return program + ": error: " + error.what() + "\nRun '" + program +
+           " --help' for the options.\n";
+  });
+  return app.exit(e) == 0 ? 0 : kUsageExitStatus;
+}
+
+}  // namespace candela
