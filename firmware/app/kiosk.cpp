@@ -15,6 +15,7 @@
 #include "core/log.h"
 #include "embedded_scenes.h"
 #include "scene/params.h"
+#include "scene/scene.h"
 
 namespace candela {
 namespace {
@@ -224,6 +225,9 @@ std::string Kiosk::load_and_show(const std::string& label, bool from_reload) {
   }
   const std::vector<std::string> problems = scene_problems(*desc);
   if (!problems.empty()) return "error: " + problems.front() + "; the running scene stays";
+  // The elements' GL-free work (a story's plan for its element's seed) here,
+  // not in the frame loop that builds the scene.
+  prepare_scene(*desc, o_.seed);
   if (desc->steps_per_second != o_.steps_per_second)
     return "error: " + desc->file + ": steps_per_second " + std::to_string(desc->steps_per_second) +
            " differs from the running " + std::to_string(o_.steps_per_second) +

@@ -43,6 +43,7 @@ struct KioskOptions {
   // ranges; empty: scene_label.
   std::string config_scene;
   int steps_per_second = 60;  // the running loop's: a scene with another rate is refused
+  uint64_t seed = 0;          // --seed (0: each scene's own): scenes are prepared for it
   Schedule schedule;
   float brightness = 1.0f;
   int64_t scene_timeout_ms = 60'000;  // how long a command waits for the frame loop to build it

@@ -165,6 +165,7 @@ int main(int argc, char** argv) {
         LOG_INFO("sound: writing %s", opt.display.sound_path.c_str());
       }
     }
+    prepare_scene(desc, opt.seed);  // what the elements do without GL (a story's plan)
     auto scene_ptr = std::make_unique<Scene>(desc, opt.seed, &g_stop);
     if (!g_stop && !desc.elements.empty() && scene_ptr->element_count() == 0 &&
         desc.file != "<built-in default>") {
@@ -196,6 +197,7 @@ int main(int argc, char** argv) {
     ko.scene_label = label;
     ko.config_scene = config_label;
     ko.steps_per_second = desc.steps_per_second;
+    ko.seed = opt.seed;
     ko.schedule = opt.schedule;
     Kiosk kiosk(std::move(ko), wall, &notify);
     // A thread only where there is something to watch: SIGHUP with a

@@ -13,6 +13,7 @@
 #include "core/cli_usage.h"
 #include "core/error.h"
 #include "core/wxh.h"
+#include "display/frame_writer.h"
 #include "input/gpio_line.h"
 
 namespace candela {
@@ -154,6 +155,10 @@ int parse_options(int argc, char** argv, Options& o) {
   // The scene's `seed` takes the same range; 0 would mean "the scene's".
   if (!seed.empty() && (!parse_count(seed, INT64_MAX, &o.seed) || o.seed == 0))
     return usage_error("--seed", "a whole number from 1 to 2^63-1", seed);
+  if (!o.display.out_path.empty()) {
+    if (const std::string why = frame_sink_problem(o.display.out_path); !why.empty())
+      return usage_error("--out", why.substr(std::string("expected ").size()), o.display.out_path);
+  }
   if (!o.display.out_path.empty() && o.display.kind == "auto") o.display.kind = "headless";
   if (!o.display.out_path.empty() && o.display.kind != "headless") {
     std::fprintf(stderr, "candela: --out needs --display headless\n");

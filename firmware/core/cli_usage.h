@@ -5,11 +5,26 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <string>
 
 namespace candela {
 
 inline constexpr int kUsageExitStatus = 2;
+
+// A number in [lo, hi], NaN and infinities refused: CLI::Range lets NaN
+// through (every comparison with it is false).
+inline CLI::Validator finite_range(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || v < lo || v > hi)
+          return "expected a number in [" + CLI::detail::to_string(lo) + ", " +
+                 CLI::detail::to_string(hi) + "], got " + text;
+        return "";
+      },
+      "FLOAT in [" + CLI::detail::to_string(lo) + " - " + CLI::detail::to_string(hi) + "]");
+}
 
 // `app`'s name is the program as the user typed it ("candela-tool build").
 inline int usage_exit(CLI::App& app, const CLI::ParseError& e) {

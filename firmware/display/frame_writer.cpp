@@ -162,11 +162,16 @@ class FfmpegSink final : public FrameSink {
                                      "vflip,pad=ceil(iw/2)*2:ceil(ih/2)*2",
                                      "-pix_fmt",
                                      "yuv420p",
-                                     "-c:v",
-                                     "libx264",
-                                     "-crf",
-                                     "18",
-                                     path};
+                                     "-c:v"};
+    // WebM holds VP8/VP9, not H.264 (a .webm always failed): VP9 at a
+    // constant quality, tuned for speed.
+    const std::vector<std::string> codec =
+        ends_with(path, ".webm")
+            ? std::vector<std::string>{"libvpx-vp9", "-crf",     "32",        "-b:v", "0",
+                                       "-deadline",  "realtime", "-cpu-used", "8"}
+            : std::vector<std::string>{"libx264", "-crf", "18"};
+    args.insert(args.end(), codec.begin(), codec.end());
+    args.push_back(path);
     const int rc = spawn_ffmpeg(args, fds[0], fds[1], &pid_);
     ::close(fds[0]);
     if (rc != 0) {
@@ -251,8 +256,24 @@ class FfmpegSink final : public FrameSink {
 
 }  // namespace
 
+std::string frame_sink_problem(const std::string& path) {
+  if (path.empty()) return "expected a folder, a .y4m, .mp4, .mkv or .webm file";
+  for (const char* ext : {".y4m", ".mp4", ".mkv", ".webm"})
+    if (ends_with(path, ext)) return "";
+  const size_t slash = path.find_last_of('/');
+  const std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  const size_t dot = name.rfind('.');
+  struct stat st {};
+  if (dot == std::string::npos || dot == 0 || name == ".." || name.empty() ||
+      (stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)))
+    return "";
+  return "expected a folder (a name without an extension) or a .y4m, .mp4, .mkv or .webm file";
+}
+
 std::unique_ptr<FrameSink> open_frame_sink(const std::string& path, int w, int h, int fps,
                                            const std::string& sound_path) {
+  if (const std::string why = frame_sink_problem(path); !why.empty())
+    throw RuntimeError(path + ": " + why);
   if (ends_with(path, ".y4m")) return std::make_unique<Y4mSink>(path, w, h, fps);
   if (ends_with(path, ".mp4") || ends_with(path, ".mkv") || ends_with(path, ".webm"))
     return std::make_unique<FfmpegSink>(path, w, h, fps, sound_path);

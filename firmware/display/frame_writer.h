@@ -22,7 +22,8 @@ class FrameSink {
   virtual void close() {}
 };
 
-// Chooses by path: "*.y4m", "*.mp4" (needs ffmpeg on PATH), else a folder of
+// Chooses by path: "*.y4m", "*.mp4", "*.mkv" (H.264), "*.webm" (VP9; these
+// need ffmpeg on PATH), else a folder of
 // frame_000000.png ... Throws RuntimeError naming the path and the problem.
 // `sound_path` (ffmpeg videos only): a .wav that close() muxes into the
 // finished video (a second ffmpeg run, video stream copied, AAC or Opus
@@ -30,6 +31,11 @@ class FrameSink {
 // removed). Skipped when the .wav is missing or holds no samples.
 std::unique_ptr<FrameSink> open_frame_sink(const std::string& path, int width, int height, int fps,
                                            const std::string& sound_path = {});
+// Empty when `path` names an output open_frame_sink writes: *.y4m, *.mp4,
+// *.mkv, *.webm, or a folder (a name without an extension, or a folder that
+// exists); else what was expected. "frames.avi" no longer silently became a
+// folder of PNGs.
+std::string frame_sink_problem(const std::string& path);
 
 class AsyncFrameWriter {
  public:

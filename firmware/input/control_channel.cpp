@@ -182,6 +182,13 @@ ControlServer::ControlServer(std::string path, int64_t idle_timeout_ms)
   if (path_.empty() || path_.size() >= sizeof addr.sun_path)
     throw RuntimeError("control socket " + path_ + ": path empty or longer than " +
                        std::to_string(sizeof addr.sun_path - 1) + " bytes");
+  // Something else at the path (a folder, a file) is refused before
+  // anything is created beside it (`--control /tmp` made /tmp.lock).
+  struct stat existing {};
+  if (path_.back() == '/' || (lstat(path_.c_str(), &existing) == 0 && !S_ISSOCK(existing.st_mode)))
+    throw RuntimeError("control socket " + path_ +
+                       ": exists and is not a socket (expected a new path, e.g. "
+                       "/run/candela/candela.sock); not replacing it");
   // The lock first: whoever holds it owns the socket path. The lock file is
   // never removed (removing it would let two servers lock different files).
   const std::string lock_path = path_ + ".lock";

@@ -1,5 +1,6 @@
 #include "input/mqtt_bridge.h"
 
+#include <arpa/inet.h>
 #include <mosquitto.h>
 #include <sys/stat.h>
 
@@ -72,6 +73,22 @@ MqttSettings parse_mqtt(ParamReader& r, bool present) {
   s.host = r.string("host", "");
   bool host_ok = !s.host.empty() && s.host.size() <= 253;
   for (char c : s.host) host_ok = host_ok && (topic_level_char(c) || c == '.' || c == ':');
+  // An address with ':' is IPv6 as inet_pton reads it (":::" is none); a
+  // name is dot-separated labels of 1..63 characters.
+  if (host_ok && s.host.find(':') != std::string::npos) {
+    in6_addr a6{};
+    host_ok = inet_pton(AF_INET6, s.host.c_str(), &a6) == 1;
+  } else if (host_ok) {
+    size_t label = 0;
+    for (char c : s.host + ".") {
+      if (c != '.') {
+        ++label;
+        continue;
+      }
+      host_ok = host_ok && label >= 1 && label <= 63;
+      label = 0;
+    }
+  }
   if (!host_ok)
     r.fail("host",
            "expected a host name or address of 1..253 characters (letters, digits, '.', '-', "
@@ -88,6 +105,23 @@ MqttSettings parse_mqtt(ParamReader& r, bool present) {
   if (s.cert_file.empty() != s.key_file.empty())
     r.fail(s.cert_file.empty() ? "key_file" : "cert_file",
            "expected cert_file and key_file together (a client certificate and its key)");
+  for (auto [key, field] : {std::pair{"ca_file", &s.ca_file}, std::pair{"cert_file", &s.cert_file},
+                            std::pair{"key_file", &s.key_file}}) {
+    if (field->empty()) continue;
+    // PEM, as libmosquitto's OpenSSL reads it: a file of something else
+    // passed --check and failed only at the first connection.
+    std::string pem;
+    try {
+      pem = BoundedFile::open(*field, FileKind::kScene).read_all();
+    } catch (const ConfigError& e) {
+      r.fail(key, std::string("cannot be read: ") + e.what());
+    }
+    const char* begin =
+        std::string_view(key) == "key_file" ? "-----BEGIN " : "-----BEGIN CERTIFICATE-----";
+    if (pem.find(begin) == std::string::npos)
+      r.fail(key, std::string("expected a PEM file (a \"") + begin +
+                      "\" block), got a file without one");
+  }
   s.prefix = r.string("prefix", s.prefix);
   if (!mqtt_valid_topic_prefix(s.prefix))
     r.fail("prefix",

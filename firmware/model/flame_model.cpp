@@ -1,5 +1,6 @@
 #include "model/flame_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -92,9 +93,17 @@ FlameModel FlameModel::from(ModelFile file) {
   const nlohmann::json& info = f.info();
   const std::string kind = get_str(f, info, "model", "kind");
   if (kind != "eigenfires") f.fail("model.kind", "expected \"eigenfires\"");
-  const int w = get_int(f, info, "model", "width", 1, 16384);
-  const int h = get_int(f, info, "model", "height", 1, 16384);
+  const int w = get_int(f, info, "model", "width", 1, kMaxModelSide);
+  const int h = get_int(f, info, "model", "height", 1, kMaxModelSide);
   const int e = get_int(f, info, "model", "components", 1, 65536);
+  const int64_t texels = int64_t{std::min(e, kMaxPlayedComponents)} * w * h;
+  if (texels > kMaxModelTexels)
+    f.fail("model.components",
+           "expected at most " + std::to_string(kMaxModelTexels >> 20) +
+               " Mi texels of played eigen-images (components, at most " +
+               std::to_string(kMaxPlayedComponents) + " played, x width x height), got " +
+               std::to_string(std::min(e, kMaxPlayedComponents)) + " x " + std::to_string(w) +
+               " x " + std::to_string(h) + ": fewer components or smaller images");
   const int frames = get_int(f, info, "model", "frames", 1, 1 << 24);
   m.frames_ = frames;
   m.total_variance = get_num(f, info, "model", "total_variance", 0, 1e30);
@@ -188,8 +197,8 @@ FlameModel FlameModel::from(ModelFile file) {
     L.order = size("order");
     if (auto bad = learning_flames_size_problem(L.np, L.nw, L.ne, L.order))
       f.fail(bad->field.empty() ? p : p + "." + bad->field, bad->problem);
-    L.width = get_int(f, lf, p, "width", 1, 16384);
-    L.height = get_int(f, lf, p, "height", 1, 16384);
+    L.width = get_int(f, lf, p, "width", 1, kMaxModelSide);
+    L.height = get_int(f, lf, p, "height", 1, kMaxModelSide);
     L.frames = get_int(f, lf, p, "frames", 1, 1 << 24);
     L.base_y = static_cast<float>(get_num(f, lf, p, "base_y", -1e6, 1e6));
     L.span = static_cast<float>(get_num(f, lf, p, "span", 0.1, 100));

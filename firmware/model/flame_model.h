@@ -38,6 +38,13 @@ inline constexpr double kMaxClipFps = 1000;  // model frames per second x speed 
 // covers every frame of a clip of 500 frames (20 s at 25 fps), so a user's own
 // footage plays back exactly.
 inline constexpr int kMaxPlayedComponents = 512;
+// What a display can show at frame rate (issue 34: a 16384x4096 model passed
+// --check and then took 1.4 GB and tens of seconds a frame): image sides up
+// to 2048 (every OpenGL ES 3 GPU's texture limit), and at most 64 Mi texels
+// of played eigen-images (components played x width x height; the built-in
+// fire has 6 Mi, a 256x320 model of 512 components 40 Mi).
+inline constexpr int kMaxModelSide = 2048;
+inline constexpr int64_t kMaxModelTexels = int64_t{64} << 20;
 
 // What is wrong with a Learning Flames part of these sizes for the players:
 // `field` under "learning_flames" (empty: the sizes together) and the

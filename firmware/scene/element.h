@@ -146,6 +146,11 @@ class ElementSpec {
   // group of up to 512 candles: 1; an eigen-flame with its textures and
   // buffers: 4); a scene may spend kMaxElementCost (scene/scene_file.h).
   virtual unsigned cost() const { return 1; }
+  // Work without GL that depends on the element's seed (an eigen-flame's
+  // story plan), done where the scene is read, off the frame loop: create()
+  // with the same seed then finds it done. Called once, before the spec is
+  // handed to the thread that creates the element (prepare_scene).
+  virtual void prepare_for(uint64_t element_seed) { (void)element_seed; }
   Vec3 position;
   uint64_t seed = 0;  // 0: derived from the scene's seed
 };

@@ -6,15 +6,27 @@
 
 namespace candela {
 
+namespace {
+uint64_t element_seed(const SceneDesc& desc, uint64_t seed_override, size_t i) {
+  const uint64_t seed = seed_override ? seed_override : desc.seed;
+  const ElementSpec& spec = *desc.elements[i].spec;
+  return spec.seed ? spec.seed : split_seed(seed, i);
+}
+}  // namespace
+
+void prepare_scene(SceneDesc& desc, uint64_t seed_override) {
+  for (size_t i = 0; i < desc.elements.size(); ++i)
+    desc.elements[i].spec->prepare_for(element_seed(desc, seed_override, i));
+}
+
 Scene::Scene(const SceneDesc& desc, uint64_t seed_override, const std::atomic<bool>* stop)
     : background_(desc.background), camera_(desc.camera), wind_(desc.wind) {
-  const uint64_t seed = seed_override ? seed_override : desc.seed;
   for (size_t i = 0; i < desc.elements.size(); ++i) {
     if (stop && stop->load(std::memory_order_relaxed)) break;  // SIGTERM: do not make the rest
     const auto& e = desc.elements[i];
     SceneContext ctx;
     ctx.scene_file = desc.file;
-    ctx.seed = e.spec->seed ? e.spec->seed : split_seed(seed, i);
+    ctx.seed = element_seed(desc, seed_override, i);
     ctx.resources = &resources_;
     if (const std::string p = e.spec->problem(); !p.empty())
       LOG_ERROR("%s: %s", desc.file.c_str(), p.c_str());

@@ -14,6 +14,11 @@
 
 namespace candela {
 
+// Each element's GL-free work for the seed it will be created with (the same
+// `seed_override` as Scene's; ElementSpec::prepare_for): on the thread that
+// read the scene, so the frame loop only creates what is ready.
+void prepare_scene(SceneDesc& desc, uint64_t seed_override = 0);
+
 class Scene {
  public:
   // Needs a current GL context. An element that fails to create is logged and

@@ -115,9 +115,16 @@ StoryDesc load_story_file(const std::string& path) {
 StoryDesc open_story(const std::string& name, const std::string& relative_to) {
   if (name.rfind("builtin:", 0) == 0) {
     const std::string text(stories::find(name.substr(8) + ".toml"));
-    if (text.empty())
-      throw ConfigError("<built-in stories>", name.substr(8),
-                        "no such built-in story (firmware/stories/*.toml)");
+    if (text.empty()) {
+      std::string names;
+      for (size_t i = 0; i < stories::count(); ++i) {
+        std::string_view n = stories::name_at(i);
+        if (n.ends_with(".toml")) n.remove_suffix(5);
+        names += (names.empty() ? "builtin:" : ", builtin:") + std::string(n);
+      }
+      throw ConfigError("<built-in stories>", name,
+                        "no such built-in story (built in: " + names + "; a file needs a path)");
+    }
     return load_story_text(text, "<built-in story " + name.substr(8) + ">");
   }
   return load_story_file(relative_to.empty() ? name : resolve_relative(relative_to, name));

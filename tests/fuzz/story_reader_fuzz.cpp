@@ -3,6 +3,7 @@
 // clips "T1", "middle", "T2"), never crash, hang or run past its bounds.
 // Runs the reader and the whole planner (walks, every transition, the loop).
 //   build with clang: ninja -C build-fuzz story_reader_fuzz (tests/fuzz/run-fuzz.sh)
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 
@@ -13,6 +14,8 @@
 
 namespace candela::stories {
 std::string_view find(std::string_view) { return {}; }
+std::size_t count() { return 0; }
+std::string_view name_at(std::size_t) { return {}; }
 }  // namespace candela::stories
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

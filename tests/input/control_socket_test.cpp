@@ -333,6 +333,22 @@ TEST(ControlSocket, RefusesToReplaceAFileThatIsNotASocket) {
   hub.start();  // logs, runs without a control channel
   EXPECT_FALSE(hub.control_ready());
   EXPECT_EQ(fs::file_size(path), 7u);
+  EXPECT_FALSE(fs::exists(path + ".lock")) << "nothing is created beside what is refused";
+  fs::remove_all(dir);
+}
+
+// Issue 34: `--control /tmp` made /tmp.lock before finding /tmp no socket.
+TEST(ControlSocket, AFolderIsRefusedAndNothingIsCreatedBesideIt) {
+  const std::string dir = temp_dir();
+  fs::create_directory(dir + "/sub");
+  for (const std::string& path : {dir + "/sub", dir + "/sub/"}) {
+    InputHub hub({}, WindSpec{}, path);
+    hub.start();
+    EXPECT_FALSE(hub.control_ready()) << path;
+  }
+  EXPECT_FALSE(fs::exists(dir + "/sub.lock"));
+  EXPECT_FALSE(fs::exists(dir + "/sub/.lock"));
+  EXPECT_TRUE(fs::is_empty(dir + "/sub"));
   fs::remove_all(dir);
 }
 

@@ -561,6 +561,10 @@ def case_config():
         ('host = "h"\nca_file = "p"\n', "mqtt.ca_file", "without tls = true"),
         ('host = "h"\ntls = true\nca_file = "nope.pem"\n', "mqtt.ca_file", "readable regular file"),
         ('host = "h"\ntls = true\ncert_file = "p"\n', "mqtt.cert_file", "together"),
+        # Issue 34: what only failed at the first connection.
+        ('host = ":::"\n', "mqtt.host", "host name"),
+        ('host = "broker..lan"\n', "mqtt.host", "host name"),
+        ('host = "h"\ntls = true\nca_file = "p"\n', "mqtt.ca_file", "expected a PEM file"),
     ]:
         path = os.path.join(WORK, "bad.toml")
         open(path, "w").write("[mqtt]\n" + body)
@@ -573,6 +577,11 @@ def case_config():
     r = subprocess.run([*CANDELA, "--config", path, "--test-pattern", "--check"],
                        capture_output=True, text=True, timeout=60)
     check(r.returncode == 0, "a good [mqtt] passes --check", r.stderr)
+    v6 = os.path.join(WORK, "v6.toml")
+    open(v6, "w").write('[mqtt]\nhost = "::1"\n')
+    r = subprocess.run([*CANDELA, "--config", v6, "--test-pattern", "--check"],
+                       capture_output=True, text=True, timeout=60)
+    check(r.returncode == 0, "an IPv6 address passes --check", r.stderr)
     os.chmod(pw, 0o644)
     r = subprocess.run([*CANDELA, "--config", path, "--test-pattern", "--check"],
                        capture_output=True, text=True, timeout=60)

@@ -306,6 +306,22 @@ TEST(FlameModel, RefusesWhatThePlayersCannotPlay) {
   // Fewer training frames than the order.
   EXPECT_EQ(error_of(with_flames(small_model(), 3, 4, 4, 2, 2).bytes(), &msg), Kind::kInconsistent);
   EXPECT_NE(msg.find("learning_flames.frames"), std::string::npos) << msg;
+  // Issue 34: what no display shows at frame rate (a 16384x4096 model took
+  // 1.4 GB and tens of seconds a frame), refused before its images are read.
+  EXPECT_EQ(
+      error_of(edited(small_model(), [](nlohmann::json& i) { i["width"] = 4096; }).bytes(), &msg),
+      Kind::kInconsistent);
+  EXPECT_NE(msg.find("model.width: expected an integer in [1, 2048]"), std::string::npos) << msg;
+  EXPECT_EQ(error_of(edited(small_model(),
+                            [](nlohmann::json& i) {
+                              i["width"] = 2048;
+                              i["height"] = 2048;
+                              i["components"] = 17;
+                            })
+                         .bytes(),
+                     &msg),
+            Kind::kInconsistent);
+  EXPECT_NE(msg.find("model.components: expected at most 64 Mi texels"), std::string::npos) << msg;
   // A clip at 100000 fps overflowed the Q16.16 frame rate.
   EXPECT_EQ(
       error_of(

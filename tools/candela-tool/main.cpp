@@ -3,6 +3,7 @@
 // this lists them (subcommand.h) as CLI11 subcommands and hands each its
 // arguments.
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -40,6 +41,10 @@ constexpr Subcommand kSubcommands[] = {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A writer whose reader went away (ffmpeg on a full disk, `| head`) gets
+  // EPIPE and says so; the default SIGPIPE ended the tool with no message
+  // (issue 34: story --out x.mp4 exited 141).
+  std::signal(SIGPIPE, SIG_IGN);
   CLI::App app{
       "The offline workshop: noise tables, simulation, flame models and stories "
       "(candela-tool SUBCOMMAND --help)",

@@ -56,7 +56,7 @@ for kind in $which; do
       "$candela" --display headless --size 256x256 --frames 1200 --seed $seed \
         --scene "$here/tools/eigen/candle-dataset/$clip.toml" --out "$clip/" >/dev/null
     done
-    "$tool" ingest calm right left --out candle-dataset --width 96 --height 144 --fps 60 \
+    "$tool" ingest calm right left --force --out candle-dataset --width 96 --height 144 --fps 60 \
       --label calm:0-1200:calm --label right:0-1200:wind-right --label left:0-1200:wind-left
     # 80 EigenFires (scenes choose how many to use), 8-bit images, no glow of its own.
     "$tool" build candle-dataset --out "$out/default.cmodel" --components 80 --bits 8 \
@@ -87,7 +87,7 @@ for kind in $which; do
     # out showed as a mottled orange grain in the haze between the tongues.
     # A faint glow of its own (0.05 of radius 0.015) joins tongues that nearly
     # touch, as the truncation's haze did.
-    "$tool" ingest fire-calm --out fire-dataset --width 128 --height 160 --threshold 0
+    "$tool" ingest fire-calm --force --out fire-dataset --width 128 --height 160 --threshold 0
     "$tool" build fire-dataset --out "$out/fire.cmodel" --components 300 \
       --bits 8 --holdout 0 --report fire-report --hue 26 --saturation 0.95 \
       --glow-strength 0.05 --glow-radius 0.015

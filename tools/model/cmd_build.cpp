@@ -10,19 +10,6 @@
 
 namespace {
 
-// CLI::Range lets NaN through (every comparison with it is false).
-CLI::Validator finite_range(double lo, double hi) {
-  return CLI::Validator(
-      [lo, hi](std::string& text) -> std::string {
-        double v = 0;
-        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || v < lo || v > hi)
-          return "expected a number in [" + CLI::detail::to_string(lo) + ", " +
-                 CLI::detail::to_string(hi) + "], got " + text;
-        return "";
-      },
-      "FLOAT in [" + CLI::detail::to_string(lo) + " - " + CLI::detail::to_string(hi) + "]");
-}
-
 int run_build(int argc, char** argv) {
   CLI::App app{"Build a flame model (EigenFires PCA, motion graph) from a dataset made by ingest",
                "candela-tool build"};
@@ -50,7 +37,7 @@ int run_build(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--theta-min", opt.graph.theta_min,
                  "smallest step of the motion graph (default, 0: half the median step)")
-      ->check(finite_range(0.0, 1e30));
+      ->check(candela::finite_range(0.0, 1e30));
   app.add_option("--successors", opt.graph.max_successors, "jumps per frame in the motion graph")
       ->check(CLI::Range(1, candela::model::kMaxSuccessors - 1))
       ->capture_default_str();
@@ -58,19 +45,19 @@ int run_build(int argc, char** argv) {
       ->check(CLI::Range(1, 1 << 24))
       ->capture_default_str();
   app.add_option("--hue", opt.colour.hue, "default colour: hue (degrees)")
-      ->check(finite_range(0.0, 360.0))
+      ->check(candela::finite_range(0.0, 360.0))
       ->capture_default_str();
   app.add_option("--saturation", opt.colour.saturation, "default colour: saturation")
-      ->check(finite_range(0.0, 1.0))
+      ->check(candela::finite_range(0.0, 1.0))
       ->capture_default_str();
   app.add_option("--glow-strength", opt.colour.glow_strength,
                  "default glow: strength (an additive blurred copy; real fire footage has "
                  "little, and any glow fills the dark gaps between tongues)")
-      ->check(finite_range(0.0, 4.0))
+      ->check(candela::finite_range(0.0, 4.0))
       ->capture_default_str();
   app.add_option("--glow-radius", opt.colour.glow_radius,
                  "default glow: radius, fraction of the image height")
-      ->check(finite_range(0.0, 1.0))
+      ->check(candela::finite_range(0.0, 1.0))
       ->capture_default_str();
   bool no_flames = false;
   app.add_flag("--no-learning-flames", no_flames,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "core/cli_usage.h"
 #include "core/error.h"
@@ -36,12 +37,17 @@ int run_ingest(int argc, char** argv) {
                "the first input's size (at most 512 rows) unless --width/--height say, with no "
                "background level taken off unless --threshold says: your footage as it looked");
   app.add_option("--threshold", opt.threshold,
-                 "background level, linear 0..1 (default: estimated per clip)");
+                 "background level, linear 0..1 (default: estimated per clip)")
+      ->check(candela::finite_range(0.0, 1.0));
   app.add_option("--dark", opt.dark_frame, "dark reference frame (PNG) subtracted first")
       ->check(CLI::ExistingFile);
-  app.add_option("--max-frames", max_frames, "at most this many frames per input");
+  app.add_option("--max-frames", max_frames, "at most this many frames per input (0: all)")
+      ->check(CLI::Range(0, 1 << 24));
   app.add_option("--step", step, "keep every n-th frame")->check(CLI::Range(1, 1000));
-  app.add_option("--fps", fps, "frame rate of PNG folders (default: from info.txt, else 30)");
+  app.add_option("--fps", fps, "frame rate of PNG folders (default: from info.txt, else 30)")
+      ->check(candela::finite_range(0.1, 1000.0));
+  bool force = false;
+  app.add_flag("--force", force, "replace a dataset already in --out");
   app.add_option(
       "--label", labels,
       "label a range: CLIP:FROM-TO:LABEL (clip-local frames), e.g. breeze:55-100:wind-right");
@@ -49,6 +55,14 @@ int run_ingest(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return candela::usage_exit(app, e);
+  }
+  // A dataset is hours of someone's footage: not replaced unless asked.
+  if (!force && std::filesystem::exists(out + "/manifest.json")) {
+    std::fprintf(stderr,
+                 "candela-tool ingest: --out %s already holds a dataset; choose another folder "
+                 "or add --force to replace it\n",
+                 out.c_str());
+    return candela::kUsageExitStatus;
   }
   for (const auto& l : labels) opt.labels.push_back(candela::tools::parse_label(l, "--label"));
   std::vector<candela::tools::SourceClip> clips;

@@ -181,8 +181,13 @@ SourceClip read_source(const std::string& input, int max_frames, int step, doubl
   if (step < 1) step = 1;
   std::error_code ec;
   if (!fs::exists(input, ec)) throw ConfigError(input, "", "no such file or folder");
-  SourceClip c = fs::is_directory(input) ? read_png_folder(input, max_frames, step)
-                                         : read_video(input, max_frames, step);
+  // A FIFO or device would be read (or waited on) for ever: footage is a
+  // folder of frames or a video file (issue 34: ingest FIFO hung).
+  const fs::file_status st = fs::status(input, ec);
+  if (!fs::is_directory(st) && !fs::is_regular_file(st))
+    throw ConfigError(input, "", "expected a folder of PNG frames or a video file");
+  SourceClip c = fs::is_directory(st) ? read_png_folder(input, max_frames, step)
+                                      : read_video(input, max_frames, step);
   if (fps_override > 0) c.fps = fps_override;
   c.fps /= step;
   return c;

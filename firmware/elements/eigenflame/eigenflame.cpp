@@ -382,6 +382,20 @@ std::unique_ptr<Element> EigenFlameSpec::create(const SceneContext& context) con
   }
 }
 
+void EigenFlameSpec::prepare_for(uint64_t element_seed) {
+  if (!story || !story_plan) return;  // no story, or one that did not plan (story_error)
+  const uint64_t seed = story->has_seed ? story->seed : element_seed;
+  if (seed == story_plan_seed) return;
+  try {
+    story_plan = std::make_shared<const story::StoryPlan>(
+        story::plan_story(*story, *model->model, seed, true));
+    story_plan_seed = seed;
+  } catch (const std::exception&) {
+    // Planned once already without error (its errors do not depend on the
+    // seed); create() plans again and reports whatever it is.
+  }
+}
+
 std::string EigenFlameSpec::problem() const {
   if (!story_error.empty())
     return story_error + "; playing the graph walk of " + model->source + " instead";

@@ -123,7 +123,8 @@ struct EigenFlameSettings {
 class EigenFlameSpec final : public ElementSpec {
  public:
   std::unique_ptr<Element> create(const SceneContext& context) const override;
-  std::string problem() const override;  // model_error: --check fails on it
+  std::string problem() const override;              // model_error: --check fails on it
+  void prepare_for(uint64_t element_seed) override;  // the story planned for that seed
   unsigned cost() const override { return 4; }
   EigenFlameSettings settings;
   std::shared_ptr<const EigenModel> model;  // never null: the default if the named one failed

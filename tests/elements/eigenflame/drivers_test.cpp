@@ -3,11 +3,14 @@
 // process's determinism, boundedness and power spectrum.
 #include <fftw3.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <random>
 #include <vector>
@@ -19,7 +22,9 @@
 #include "elements/eigenflame/graph_walker.h"
 #include "elements/eigenflame/no_repeat_guard.h"
 #include "model/flame_model.h"
+#include "scene/scene.h"
 #include "scene/scene_file.h"
+#include "story/story_plan.h"
 
 namespace candela {
 namespace {
@@ -438,6 +443,40 @@ TEST(ArpProcess, DefaultModelKeepsItsTrainingSpectrum) {
     // Bounded: the clamp at the training range +- half its span rarely bites.
     EXPECT_LT(q.clamped(), static_cast<uint64_t>(steps * L.dim / 20));
   }
+}
+
+// Issue 34: a story was planned while the scene was read and again by the
+// frame loop creating the element (up to a minute before the planning
+// bound). It is now planned where the scene is read, for the seed its
+// element gets (prepare_scene), so creating it plans nothing.
+TEST(EigenStory, PlannedWhereTheSceneIsReadForTheElementsSeed) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("candela-story-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "walk.story.toml")
+      << "model = \"builtin:fire\"\n[[segment]]\nwalk = 2\n[[segment]]\nwalk = 2\n";
+  std::ofstream(dir / "s.toml") << "seed = 9\n[[element]]\nkind = \"eigenflame\"\n"
+                                   "story = \"walk.story.toml\"\n";
+  SceneDesc d = load_scene_file((dir / "s.toml").string());
+  auto* spec = dynamic_cast<EigenFlameSpec*>(d.elements.at(0).spec.get());
+  ASSERT_NE(spec, nullptr);
+  ASSERT_TRUE(spec->story_plan) << spec->story_error;
+  prepare_scene(d, 0);
+  const uint64_t element_seed = split_seed(9, 0);
+  EXPECT_EQ(spec->story_plan_seed, element_seed);
+  const story::StoryPlan want =
+      story::plan_story(*spec->story, *spec->model->model, element_seed, true);
+  ASSERT_EQ(spec->story_plan->frames(), want.frames());
+  for (int i = 0; i < want.frames(); ++i)
+    ASSERT_EQ(spec->story_plan->model_frame(i), want.model_frame(i)) << i;
+  // Prepared again for the same seed: the same plan, not a new one.
+  const story::StoryPlan* planned = spec->story_plan.get();
+  prepare_scene(d, 0);
+  EXPECT_EQ(spec->story_plan.get(), planned);
+  // --seed 5 for the whole run: planned for that.
+  prepare_scene(d, 5);
+  EXPECT_EQ(spec->story_plan_seed, split_seed(5, 0));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
