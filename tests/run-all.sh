@@ -3,11 +3,16 @@
 # Release build against libgpiod 2 (build-gpiod2/) and an AddressSanitizer +
 # UndefinedBehaviorSanitizer build (build-asan/); then an arm64 cross build
 # (build-arm64/, its tests under qemu-user) and the fuzz targets. The
-# virtual-board tests (label "board", slow under emulation) and the slow pure
-# numerics (label "numeric") run in the normal build only.
+# virtual-board tests (label "board", slow under emulation), the slow pure
+# numerics (label "numeric") and the realism checks against real footage
+# (label "realism") run in the normal build only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
+# Each stage's minutes, printed as it ends: CI must stay within its budget on
+# the slowest 2-core machine it gets (the same work took 2-3x as long on some).
+started=$(date +%s)
+stage() { echo "run-all: $1 done at $(( ($(date +%s) - started) / 60 )) min"; }
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCANDELA_WERROR=ON
 cmake --build build -j "$jobs"
@@ -15,6 +20,7 @@ ctest --test-dir build --output-on-failure -j "$jobs" -LE board
 # The virtual-board tests time real kernel events under emulation: run them
 # on their own, one at a time, so the other tests' load cannot skew them.
 ctest --test-dir build --output-on-failure -L board
+stage "normal build, its tests and the virtual board"
 
 # libgpiod 2.x (Debian 13) next to the 1.6 above, built by the other compiler
 # in the other optimised build type: build trixie's libgpiod from Debian's
@@ -27,25 +33,37 @@ ctest --test-dir build --output-on-failure -L board
 # from build/vboard: it is not built again.
 gpiod2_prefix=$(board/libgpiod2/build.sh build-gpiod2) ||
   { echo "run-all: error: could not build Debian 13's libgpiod (see above)" >&2; exit 1; }
+# Without candela-tool (the offline tools: Eigen, libav; 4 of every 10 CPU
+# minutes of a build): the normal build above builds and tests them, the
+# fuzz targets read their manifests under ASan, and CI fits its budget.
 cmake -S . -B build-gpiod2 -G Ninja -DCMAKE_BUILD_TYPE=Release -DCANDELA_WERROR=ON -DCANDELA_BUILD_BENCH=OFF \
+  -DCANDELA_BUILD_TOOLS=OFF \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_PREFIX_PATH="$gpiod2_prefix"
 grep -qx 'CANDELA_GPIO_API:INTERNAL=2' build-gpiod2/CMakeCache.txt ||
   { echo "run-all: error: build-gpiod2 did not pick libgpiod 2 (gpio_line_v2.cpp)" >&2; exit 1; }
 cmake --build build-gpiod2 -j "$jobs"
 # Not "package": this libgpiod is in no Debian 12 package, so dpkg-shlibdeps
-# cannot name the .deb's Depends (the normal build packages); not "numeric":
-# the slow numerics ran above.
-ctest --test-dir build-gpiod2 --output-on-failure -j "$jobs" -LE 'board|package|numeric'
+# cannot name the .deb's Depends (the normal build packages); not "numeric"
+# and not "realism" (the footage comparisons: 12 of the normal build's 37
+# CPU minutes of tests, the same numerics): they ran above.
+ctest --test-dir build-gpiod2 --output-on-failure -j "$jobs" -LE 'board|package|numeric|realism'
 CANDELA_VBOARD_CACHE=${CANDELA_VBOARD_CACHE:-$PWD/build/vboard} ctest --test-dir build-gpiod2 --output-on-failure -L board -R gpio
+stage "clang Release build against libgpiod 2 and its tests"
 
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCANDELA_WERROR=ON -DCANDELA_SANITIZE=ON -DCANDELA_BUILD_BENCH=OFF
+# The runtime and the recorder (what runs on the board), without candela-tool
+# as in build-gpiod2/.
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCANDELA_WERROR=ON -DCANDELA_SANITIZE=ON -DCANDELA_BUILD_BENCH=OFF \
+  -DCANDELA_BUILD_TOOLS=OFF
 cmake --build build-asan -j "$jobs"
 # Label "numeric": pure numerics whose code a smaller test runs here (5 min
-# under ASan for 2 s normally); they run in the normal build above.
-ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE 'board|numeric'
+# under ASan for 2 s normally); "realism": the footage comparisons, whose
+# code (every element's drawing) the render tests run here; both run in the
+# normal build above.
+ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE 'board|numeric|realism'
+stage "ASan + UBSan build and its tests"
 
 # arm64 (board/arm64/): the runtime cross-built with GCC -Werror in
 # MinSizeRel (the one build type not built above) against Debian's :arm64
@@ -55,9 +73,11 @@ ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE 'board|numeric'
 board/arm64/cross-build.sh --host-build build build-arm64
 board/arm64/test.sh build-arm64
 board/arm64/package.sh build-arm64
+stage "arm64 cross build, its tests under qemu-user and its package"
 
 # libFuzzer (clang, build-fuzz/): the model reader with the players built from
 # it, the scene reader, noise tables, the control-socket commands and the
 # dataset manifest, 10 s each from tests/fuzz/corpus/; any crash, leak,
 # timeout or > 2 GB RSS fails the run.
 tests/fuzz/run-fuzz.sh 10
+stage "fuzzing"
