@@ -12,7 +12,7 @@
 # the C++ tests that start candela or candela-record themselves put
 # $CANDELA_EMULATOR in front (tests/support/programs.py, program_command.h),
 # which ctest sets for every test of a cross build.
-#   board/arm64/test.sh [--all] BUILD_DIR
+#   board/arm64/test.sh [--all | --quick] BUILD_DIR
 # Without --all, the tests that take long under emulation are left out
 # (`slow` below, each with its reason; --all runs them too), so the CI step
 # stays within its few minutes. What they run is covered by the amd64 builds
@@ -40,7 +40,11 @@ slow+='|^mqtt_(commands|reconnect|password|silent|retained)$|^sound_cli_|^soak_r
 # within the client's 20 s.
 slow+='|^kiosk_live\.LiveControl\.ScheduleSwitchesTheScreenOnAFastClock$|^mqtt_tls$)'
 if [ "${1:-}" = --all ]; then slow='^$'; shift; fi
-build=${1:?usage: board/arm64/test.sh [--all] BUILD_DIR}
+# --quick: the unit tests only (no renders under emulation), then the state
+# equality: what tests/run-all.sh runs when CI's earlier stages took long.
+labels=unit,render,candle,eigenflame,model
+if [ "${1:-}" = --quick ]; then labels=unit; shift; fi
+build=${1:?usage: board/arm64/test.sh [--all | --quick] BUILD_DIR}
 jobs=$(nproc)
 # Left out even with --all: they assume native speed, and fail under
 # emulation for that reason alone (each runs in every amd64 build).
@@ -58,16 +62,17 @@ emulator=$(sed -n 's/^CMAKE_CROSSCOMPILING_EMULATOR:[A-Z]*=//p' "$build/CMakeCac
 
 # The tests of those labels.
 ctest --test-dir "$build" --show-only=json-v1 >"$build/arm64-tests.json"
-picked=$(/usr/bin/python3 - "$build/arm64-tests.json" "$not_here" "$slow" <<'PY'
+picked=$(/usr/bin/python3 - "$build/arm64-tests.json" "$not_here" "$slow" "$labels" <<'PY'
 import json, re, sys
 tests = json.load(open(sys.argv[1]))["tests"]
+wanted = set(sys.argv[4].split(","))
 picked, skipped, slow = [], 0, 0
 for number, t in enumerate(tests, 1):  # ctest's test numbers (for -I)
     labels = set()
     for p in t.get("properties", []):
         if p["name"] == "LABELS":
             labels.update(p["value"])
-    if not labels & {"unit", "render", "candle", "eigenflame", "model"}:
+    if not labels & wanted:
         continue
     if re.search(sys.argv[2], t["name"]):
         skipped += 1
