@@ -23,9 +23,7 @@ KioskConfig load_config_file(const std::string& path) {
   if (!c.scene.empty() && is_scene_name(c.scene)) {
     const std::vector<std::string> names = builtin_scene_names();
     if (std::find(names.begin(), names.end(), c.scene) == names.end()) {
-      std::string list;
-      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-      r.fail("scene", "expected a built-in scene (" + list +
+      r.fail("scene", "expected a built-in scene (" + builtin_scene_list() +
                           ") or a scene file's path (with a '/' "
                           "or ending in .toml), got \"" +
                           echo_value(c.scene) + "\"");

@@ -18,15 +18,11 @@
 #include "scene/scene.h"
 
 namespace candela {
-namespace {
-
-std::string builtin_names() {
+std::string builtin_scene_list() {
   std::string out;
   for (const auto& n : builtin_scene_names()) out += (out.empty() ? "" : ", ") + n;
   return out;
 }
-
-}  // namespace
 
 bool is_scene_name(const std::string& label) {
   return label.find('/') == std::string::npos && !label.ends_with(".toml");
@@ -47,7 +43,7 @@ SceneDesc load_scene_by_label(const std::string& label) {
   if (!is_scene_name(label)) return load_scene_file(label);
   if (scenes::find(label + ".toml").empty())
     throw ConfigError("scene \"" + echo_value(label) + "\"", "",
-                      "no such built-in scene (built in: " + builtin_names() +
+                      "no such built-in scene (built in: " + builtin_scene_list() +
                           "; a file needs a path, e.g. ./my.toml)");
   return load_builtin_scene(label);
 }
@@ -225,13 +221,13 @@ std::string Kiosk::load_and_show(const std::string& label, bool from_reload) {
   }
   const std::vector<std::string> problems = scene_problems(*desc);
   if (!problems.empty()) return "error: " + problems.front() + "; the running scene stays";
-  // The elements' GL-free work (a story's plan for its element's seed) here,
-  // not in the frame loop that builds the scene.
-  prepare_scene(*desc, o_.seed);
   if (desc->steps_per_second != o_.steps_per_second)
     return "error: " + desc->file + ": steps_per_second " + std::to_string(desc->steps_per_second) +
            " differs from the running " + std::to_string(o_.steps_per_second) +
            " (a restart changes it); the running scene stays";
+  // The elements' GL-free work (a story's plan for its element's seed) here,
+  // not in the frame loop that builds the scene.
+  prepare_scene(*desc, o_.seed);
   std::unique_lock lock(mu_);
   pending_ = std::move(desc);
   pending_label_ = label;

@@ -160,5 +160,7 @@ bool is_scene_name(const std::string& label);
 // The built-in scenes a person would pick (not the benchmarks'): names for
 // `scene NAME` and MQTT's scene select.
 std::vector<std::string> builtin_scene_names();
+// The same, as a list for messages: "default, eigen-candle, ...".
+std::string builtin_scene_list();
 
 }  // namespace candela

@@ -157,7 +157,7 @@ int parse_options(int argc, char** argv, Options& o) {
     return usage_error("--seed", "a whole number from 1 to 2^63-1", seed);
   if (!o.display.out_path.empty()) {
     if (const std::string why = frame_sink_problem(o.display.out_path); !why.empty())
-      return usage_error("--out", why.substr(std::string("expected ").size()), o.display.out_path);
+      return usage_error("--out", why, o.display.out_path);
   }
   if (!o.display.out_path.empty() && o.display.kind == "auto") o.display.kind = "headless";
   if (!o.display.out_path.empty() && o.display.kind != "headless") {

@@ -257,7 +257,9 @@ class FfmpegSink final : public FrameSink {
 }  // namespace
 
 std::string frame_sink_problem(const std::string& path) {
-  if (path.empty()) return "expected a folder, a .y4m, .mp4, .mkv or .webm file";
+  const char* kExpected =
+      "a folder (a name without an extension) or a .y4m, .mp4, .mkv or .webm file";
+  if (path.empty()) return kExpected;
   for (const char* ext : {".y4m", ".mp4", ".mkv", ".webm"})
     if (ends_with(path, ext)) return "";
   const size_t slash = path.find_last_of('/');
@@ -267,13 +269,13 @@ std::string frame_sink_problem(const std::string& path) {
   if (dot == std::string::npos || dot == 0 || name == ".." || name.empty() ||
       (stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)))
     return "";
-  return "expected a folder (a name without an extension) or a .y4m, .mp4, .mkv or .webm file";
+  return kExpected;
 }
 
 std::unique_ptr<FrameSink> open_frame_sink(const std::string& path, int w, int h, int fps,
                                            const std::string& sound_path) {
   if (const std::string why = frame_sink_problem(path); !why.empty())
-    throw RuntimeError(path + ": " + why);
+    throw RuntimeError(path + ": expected " + why);
   if (ends_with(path, ".y4m")) return std::make_unique<Y4mSink>(path, w, h, fps);
   if (ends_with(path, ".mp4") || ends_with(path, ".mkv") || ends_with(path, ".webm"))
     return std::make_unique<FfmpegSink>(path, w, h, fps, sound_path);

@@ -33,8 +33,8 @@ std::unique_ptr<FrameSink> open_frame_sink(const std::string& path, int width, i
                                            const std::string& sound_path = {});
 // Empty when `path` names an output open_frame_sink writes: *.y4m, *.mp4,
 // *.mkv, *.webm, or a folder (a name without an extension, or a folder that
-// exists); else what was expected. "frames.avi" no longer silently became a
-// folder of PNGs.
+// exists); else what is expected instead ("a folder (...) or a .y4m ... file"). "frames.avi" no
+// longer silently became a folder of PNGs.
 std::string frame_sink_problem(const std::string& path);
 
 class AsyncFrameWriter {

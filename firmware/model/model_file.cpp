@@ -303,8 +303,8 @@ const Tensor& ModelFile::require(std::string_view name, DType dtype,
   }
   if (!ok) {
     std::string s = "[";
-    for (int64_t want :
-         shape) {  // appended piecewise: GCC 12's -Wrestrict misfires on "," + string
+    // Appended piecewise: GCC 12's -Wrestrict misfires on "," + string.
+    for (int64_t want : shape) {
       if (s.size() > 1) s += ',';
       s += want < 0 ? std::string("*") : std::to_string(want);
     }
