@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -211,15 +212,18 @@ TEST(PerlinFire, EveryBuiltInFireSceneLoads) {
   }
 }
 
-// The fireplace is one fire that fills the picture (issue 13: at least 10% of
-// the pixels above 0.25 gray and 45% of the frame's height, at 1280x720), not
-// separate fires side by side: through the fire's middle (30-60% of its
-// height down from its top) no dark gap wider than 6% of the frame splits it
-// (three separate volumes left gaps of 9-10%; gaps between tongues are
-// narrower). At the scene's own top quality: its automatic quality would
-// make what is measured depend on how fast this machine renders it.
-TEST(PerlinFire, FireplaceFillsThePictureAsOneFire) {
-  constexpr int kFw = 1280, kFh = 720;
+// The fireplace is one fire that fills the picture (issue 35: at least 12% of
+// the pixels above 0.25 gray and 45% of the frame's height, at 1280x720 and
+// 1920x1080; it lit 10.7% before its body was widened), not separate fires
+// side by side: through the fire's middle (30-60% of its height down from its
+// top) no dark gap wider than 6% of the frame splits it (three separate
+// volumes left gaps of 9-10%; gaps between tongues are narrower). At the
+// scene's own top quality: its automatic quality would make what is measured
+// depend on how fast this machine renders it.
+class FireplaceFill : public ::testing::TestWithParam<std::pair<int, int>> {};
+
+TEST_P(FireplaceFill, FillsThePictureAsOneFire) {
+  const int kFw = GetParam().first, kFh = GetParam().second;
   const auto lit = [](const test::Frame& f, int x, int y) { return f.luma(x, y) > 0.25 * 255; };
   std::string toml(scenes::find("perlin-fireplace.toml"));
   const auto at = toml.find("quality = \"auto\"");
@@ -258,8 +262,15 @@ TEST(PerlinFire, FireplaceFillsThePictureAsOneFire) {
     EXPECT_GE(last - first, 0.3 * kFw) << "frame " << k << ": the fire is narrower than the hearth";
     EXPECT_LE(widest_gap, 0.06 * kFw) << "frame " << k << ": a dark gap splits the fire";
   }
-  EXPECT_GE(lit_share / kFrames, 0.10);
+  EXPECT_GE(lit_share / kFrames, 0.12);
 }
+
+INSTANTIATE_TEST_SUITE_P(PerlinFire, FireplaceFill,
+                         ::testing::Values(std::make_pair(1280, 720), std::make_pair(1920, 1080)),
+                         [](const auto& info) {
+                           return std::to_string(info.param.first) + "x" +
+                                  std::to_string(info.param.second);
+                         });
 
 }  // namespace
 }  // namespace candela
