@@ -65,31 +65,45 @@ void main() {
     colour = mix(vec3(0.42, 0.3, 0.19), vec3(0.3, 0.2, 0.12), rings) * (1.0 - 0.85 * smoothstep(0.6, 0.95, r));
   } else {
     vec2 q = vec2(v_log.y * 14.0 + v_seed, v_log.x * 5.0);
-    // Bark: ragged ridges between deep furrows, running along the log (q.y),
-    // with fine grain and lichen-pale flecks on the ridges.
-    // Bark plates: ridges broken along the log, not endless stripes.
-    float ridge = 1.0 - abs(2.0 * fbm(vec2(q.x * 2.2, q.y * 0.7) + 0.6 * noise(q * vec2(0.7, 0.35))) - 1.0);
-    float plates = smoothstep(0.3, 0.7, fbm(vec2(q.x * 1.3 + 5.0, q.y * 1.6)));
-    float furrow = smoothstep(0.4, 0.85, ridge) * (0.45 + 0.55 * plates);
-    float grain = noise(vec2(q.x * 9.0, q.y * 1.2));
+    // Bark: thick plates split by deep, dark fissures that wander along the
+    // log (q.y) and break across it, so the surface reads as rough relief at
+    // every scale, not as smooth stripes.
+    vec2 b = vec2(q.x * 2.6, q.y * 0.9);
+    b.x += 0.8 * fbm(q * vec2(0.9, 0.45) + 11.0);  // fissures wander
+    float fissure = 1.0 - abs(2.0 * fbm(b) - 1.0);  // 1 on the plate, 0 in a fissure
+    float across = fbm(vec2(q.x * 1.2 + 5.0, q.y * 3.5));  // plates break along the log
+    float plate = smoothstep(0.35, 0.75, fissure) * smoothstep(0.2, 0.45, across);
+    float rough = fbm(q * vec2(11.0, 4.0) + 3.0);  // the plates' own texture
     // Weathered bark is grayer than the wood beneath it.
     vec3 bark = mix(u_bark, vec3(dot(u_bark, vec3(0.3, 0.5, 0.2))), 0.35);
-    colour = bark * (0.15 + 1.1 * furrow) * (0.75 + 0.5 * grain);
-    colour += vec3(0.05, 0.047, 0.04) * smoothstep(0.72, 0.95, noise(q * vec2(3.0, 0.8) + 41.0)) * furrow;
+    colour = bark * (0.08 + 1.15 * plate * (0.55 + 0.9 * rough));
+    colour += vec3(0.05, 0.047, 0.04) * smoothstep(0.72, 0.95, noise(q * vec2(3.0, 0.8) + 41.0)) * plate;
     // Char: where the fire reaches (up, and towards the light) and along the
     // underside that lies on the coals, with a ragged edge.
     float edge = 0.4 * (fbm(q * 1.1 + vec2(0.0, v_seed)) - 0.5);
     float above = clamp(facing * 0.7 + n.y * 0.5, 0.0, 1.0);
     float below = smoothstep(-0.05, -0.55, n.y);
-    float char_amount = max(smoothstep(0.45, 0.8, above + edge), smoothstep(0.3, 0.8, below + edge));
-    vec2 cell = char_cells(vec2(q.x * 1.4, q.y * 0.9));
-    // The blocks: dull black with a faint sheen, darker toward their cracks.
-    vec3 char_colour = vec3(0.05, 0.042, 0.036) * (0.7 + 0.6 * cell.y) * smoothstep(0.0, 0.12, cell.x);
+    float char_amount = max(smoothstep(0.3, 0.65, above + edge), smoothstep(0.3, 0.8, below + edge));
+    // Alligator char: blocks about as long as they are wide (a few cm), not
+    // long strips along the log.
+    vec2 cell = char_cells(vec2(q.x * 1.2, q.y * 5.0));
+    // The blocks: dull black with a faint sheen, darker toward their cracks,
+    // each rounded (lighter in the middle) so the char has relief.
+    float dome = smoothstep(0.0, 0.35, cell.x);
+    vec3 char_colour = vec3(0.05, 0.042, 0.036) * (0.5 + 0.8 * cell.y) * (0.25 + 0.9 * dome);
+    // White-grey ash on some blocks' crowns, most where the fire is hottest.
+    float ash = smoothstep(0.55, 0.9, cell.y + 0.3 * above) * smoothstep(0.1, 0.4, cell.x) *
+                smoothstep(0.4, 0.7, noise(q * vec2(6.0, 16.0) + 7.0));
+    char_colour = mix(char_colour, vec3(0.32, 0.3, 0.28) * (0.7 + 0.3 * rough), 0.8 * ash);
     colour = mix(colour, char_colour, char_amount);
     // Cracks between the blocks glow, hottest underneath and where the fire
     // licks; not every crack at once.
-    float crack = smoothstep(0.06, 0.0, cell.x) * char_amount;
-    crack *= smoothstep(0.25, 0.6, fbm(q * 0.5 + 23.0) + 0.35 * below);
+    // Only some blocks' borders glow, and those in broken runs, so the glow
+    // reads as embers in the deepest fissures, not as a drawn network; a
+    // crack is a soft, hot seam a little wider than the char's dark gap.
+    float crack = smoothstep(0.12, 0.0, cell.x) * char_amount;
+    crack *= smoothstep(0.55, 0.85, cell.y);
+    crack *= smoothstep(0.4, 0.65, fbm(q * vec2(2.0, 6.0) + 23.0));
     // 16 bits over two channels: the glow is bright, 8 would band it.
     float hi = floor(crack * 255.0) / 255.0;
     o_crack = vec4(hi, (crack - hi) * 255.0, cell.y, hash(vec2(cell.y * 91.0, 3.0)));

@@ -24,12 +24,20 @@ void main() {
   vec3 to_light = u_light_pos - v_world;
   float d2 = dot(to_light, to_light);
   float facing = max(dot(n, normalize(to_light)), 0.0);
-  vec3 lit = u_light.rgb * (0.45 + 2.2 * facing) / (1.0 + d2 * 2.0);
+  // Little light reaches what faces away from the fire (the front of a front
+  // log is a dark silhouette, as in a real fireplace); what faces it, and the
+  // tops the flames lick, flicker bright.
+  vec3 lit = u_light.rgb * (0.08 + 2.6 * facing * facing + 0.6 * max(n.y, 0.0)) / (1.0 + d2 * 2.0);
   // The coals under the logs light their undersides and lower flanks.
   lit += u_light.rgb * vec3(1.0, 0.6, 0.35) * (0.55 * u_light.w * max(-n.y + 0.3, 0.0));
+  // Where a log lies on the coals its char is red hot: a soft glow that
+  // climbs its lower flank, breathing with the fire's light.
+  float underside = smoothstep(0.1, -0.7, n.y);
+  vec3 hot = vec3(1.0, 0.28, 0.04) * underside * underside * 0.5 * u_light.w *
+             (0.7 + 0.3 * sin(u_time * 0.9 + v_world.x * 7.0));
   float crack = k.x + k.y * (1.0 / 255.0);
   float pulse = 0.6 + 0.4 * sin(u_time * (1.3 + k.z * 2.0) + k.w * 6.28);
   float glow = crack * pulse * u_light.w;
   vec3 ember = vec3(1.0, 0.32, 0.05) * glow * 1.6 + vec3(1.0, 0.7, 0.3) * pow(glow, 3.0) * 0.6;
-  o_color = vec4(colour * (lit + vec3(0.03)) + ember, 1.0);
+  o_color = vec4(colour * (lit + vec3(0.03)) + ember + hot * (0.3 + colour), 1.0);
 }
