@@ -43,6 +43,7 @@ tests=(
   # openssl makes the TLS case's certificates
   mosquitto python3-paho-mqtt openssl
   ffmpeg python3 python3-numpy python3-scipy python3-pil imagemagick xvfb xauth
+  python3-sklearn  # ../shared/eval/c2st.py (tests/realism/c2st.sh): the classifier two-sample test
   # virtual board (board/virtual): QEMU + Debian kernel + out-of-tree drivers
   qemu-system-x86 busybox-static cpio kmod gzip xz-utils bc flex bison libelf-dev
   v4l-utils libdrm-tests
