@@ -31,6 +31,8 @@ SCENES = ["test-pattern", "default", "eigen-candle", "eigen-fireplace", "eigen-s
           "perlin-fireplace", "bench-candles-100"]
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "support"))
+from programs import program  # noqa: E402  ($CANDELA_EMULATOR in front, as every test script)
 
 
 def fail(msg, code=2):
@@ -89,7 +91,7 @@ def main():
     ap.add_argument("--build", default=os.path.join(SOURCE, "build"),
                     help="build folder holding firmware/candela (default: build/)")
     ap.add_argument("--candela", help="the candela program (default: BUILD/firmware/candela); "
-                    "$CANDELA_EMULATOR goes in front of it")
+                    "$CANDELA_EMULATOR goes in front of it (tests/support/programs.py)")
     ap.add_argument("--max-ratio", type=ratio_arg, help="exit 1 if a scene's ratio is above this")
     ap.add_argument("--max-p99-over-p95", type=ratio_arg,
                     help="exit 1 if a scene's p99 is above this many times its p95")
@@ -102,10 +104,10 @@ def main():
         unknown = [s for s in scenes if s not in SCENES]
         if unknown or not scenes:
             ap.error("--scenes: expected names from %s, got '%s'" % (", ".join(SCENES), a.scenes))
-    program = a.candela or os.path.join(a.build, "firmware", "candela")
-    if not os.access(program, os.X_OK):
-        fail("no candela program at '%s' (build first, or give --build or --candela)" % program)
-    candela = os.environ.get("CANDELA_EMULATOR", "").split() + [program]
+    path = a.candela or os.path.join(a.build, "firmware", "candela")
+    if not os.access(path, os.X_OK):
+        fail("no candela program at '%s' (build first, or give --build or --candela)" % path)
+    candela = program(path)
 
     with tempfile.TemporaryDirectory() as tmp:
         empty = os.path.join(tmp, "empty.toml")
