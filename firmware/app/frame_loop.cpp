@@ -61,6 +61,29 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
   int shown_w = 0, shown_h = 0;  // the size the kiosk was last told frames are drawn at
   uint64_t fps_frames = 0;
   auto fps_since = Clock::now();
+  // With --frames, the frame periods that pass with nothing shown (screen
+  // off, no monitor) count toward max_frames, so a bounded run ends although
+  // its schedule keeps the screen dark. Counted from when the sleep began.
+  std::optional<Clock::time_point> asleep_since;
+  auto count_asleep = [&] {
+    const auto now = Clock::now();
+    if (!asleep_since) {
+      asleep_since = now;
+      return;
+    }
+    const int64_t periods = (now - *asleep_since) / frame_period;
+    result.frames_asleep += static_cast<uint64_t>(periods);
+    *asleep_since += periods * frame_period;
+  };
+  // The longest a sleep may last: a quarter second, less when --frames ends sooner.
+  auto sleep_ms = [&] {
+    if (s.max_frames == 0) return 250;
+    const uint64_t left =
+        s.max_frames - std::min(s.max_frames, result.frames + result.frames_asleep);
+    const int64_t periods = static_cast<int64_t>(std::min<uint64_t>(left, 1'000'000));
+    const auto left_ms = std::chrono::ceil<std::chrono::milliseconds>(periods * frame_period);
+    return static_cast<int>(std::clamp<int64_t>(left_ms.count(), 1, 250));
+  };
 
   auto do_step = [&] {
     step.step = clock.steps();
@@ -116,7 +139,7 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
   do_step();
   auto last_present = Clock::now();
   auto prev_begin = last_present;
-  while (s.max_frames == 0 || result.frames < s.max_frames) {
+  while (s.max_frames == 0 || result.frames + result.frames_asleep < s.max_frames) {
     if (s.stop && s.stop->load(std::memory_order_relaxed)) break;
     if (!display.poll_events(keys)) {
       result.quit_requested = true;
@@ -141,7 +164,9 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
         // command wakes it (or a quarter second, for signals and pings).
         if (s.inputs) s.inputs->drain(scene->wind());
         if (s.notify) s.notify->idle(Clock::now());
-        kiosk->wait_for_wake(250);
+        count_asleep();
+        kiosk->wait_for_wake(sleep_ms());
+        count_asleep();
         continue;
       }
     }
@@ -156,9 +181,12 @@ LoopResult run_loop(Display& display, Scene* scene_in, std::unique_ptr<Scene>* o
       }
       screen_present = false;
       shown_w = shown_h = 0;  // told again once a screen is there
-      display.wait_for_screen(250);
+      count_asleep();
+      display.wait_for_screen(sleep_ms());
+      count_asleep();
       continue;
     }
+    asleep_since.reset();
     if (!screen_present) {  // a screen again: no catching up on the time without one
       screen_present = true;
       prev_begin = Clock::now();

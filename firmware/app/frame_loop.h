@@ -21,7 +21,9 @@ class SdNotify;
 class SoundOutput;
 
 struct LoopSettings {
-  uint64_t max_frames = 0;  // 0: until quit
+  // 0: until quit. Frame periods with nothing shown (screen off, no
+  // monitor) count too, so a bounded run ends whatever its schedule does.
+  uint64_t max_frames = 0;
   int steps_per_second = 60;
   int frames_per_second = 60;  // lockstep: steps per frame = steps_per_second / fps
   // Where nothing paces presentation (headless), hold frames_per_second by
@@ -44,7 +46,8 @@ struct LoopSettings {
 };
 
 struct LoopResult {
-  uint64_t frames = 0;
+  uint64_t frames = 0;         // drawn and presented
+  uint64_t frames_asleep = 0;  // frame periods passed with the screen off or absent
   uint64_t steps = 0;
   bool quit_requested = false;
 };

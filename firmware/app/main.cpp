@@ -241,8 +241,13 @@ int main(int argc, char** argv) {
     if (sound) sound->finish();  // the .wav complete before the video muxes it
     display->finish();
     if (g_stop) LOG_INFO("stopped by %s; outputs finished", signal_name(g_signal));
-    LOG_INFO("%llu frames, %llu steps", static_cast<unsigned long long>(r.frames),
-             static_cast<unsigned long long>(r.steps));
+    if (r.frames_asleep)
+      LOG_INFO("%llu frames, %llu steps; %llu frame periods with nothing shown (screen off)",
+               static_cast<unsigned long long>(r.frames), static_cast<unsigned long long>(r.steps),
+               static_cast<unsigned long long>(r.frames_asleep));
+    else
+      LOG_INFO("%llu frames, %llu steps", static_cast<unsigned long long>(r.frames),
+               static_cast<unsigned long long>(r.steps));
     if (opt.bench)
       std::printf("%s\n",
                   stats

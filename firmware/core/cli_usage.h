@@ -8,6 +8,8 @@
 #include <cmath>
 #include <string>
 
+#include "core/wxh.h"
+
 namespace candela {
 
 inline constexpr int kUsageExitStatus = 2;
@@ -24,6 +26,18 @@ inline CLI::Validator finite_range(double lo, double hi) {
         return "";
       },
       "FLOAT in [" + CLI::detail::to_string(lo) + " - " + CLI::detail::to_string(hi) + "]");
+}
+
+// A size "WxH" within [min, max] a side (core/wxh.h), e.g. for --size.
+inline CLI::Validator wxh_range(WxH min, WxH max) {
+  return CLI::Validator(
+      [min, max](std::string& text) -> std::string {
+        if (parse_wxh(text, min, max)) return "";
+        return "expected WxH, the width " + std::to_string(min.width) + " to " +
+               std::to_string(max.width) + " and the height " + std::to_string(min.height) +
+               " to " + std::to_string(max.height) + ", got " + text;
+      },
+      "WxH");
 }
 
 // `app`'s name is the program as the user typed it ("candela-tool build").

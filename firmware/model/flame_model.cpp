@@ -65,6 +65,49 @@ QuantisedImages quantised(const ModelFile& f, const std::string& name, int count
   return q;
 }
 
+// Issue 34: values that load but play nothing a viewer would call a flame.
+// A mean image no brighter than this (display-coded, 255 = white; the
+// ramp's default black level is 4) shows no flame; the built-in models'
+// means peak above 200.
+constexpr float kMinVisiblePeak = 16.0f;
+// The least swing, in display levels, that the motion must give some pixel
+// (a weight's spread over the frames times its image's range); below it the
+// flame stands still. The built-in models swing by tens of levels.
+constexpr double kMinMotionLevels = 1.0;
+
+void require_visible(const ModelFile& f, const std::string& name, const QuantisedImages& q) {
+  float peak = -std::numeric_limits<float>::infinity();
+  for (size_t p = 0; p < q.pixels(); ++p) peak = std::max(peak, q.value(0, p));
+  if (!(peak >= kMinVisiblePeak))
+    f.fail("tensor " + name + ".scale", "expected a mean image whose brightest pixel is at least " +
+                                            std::to_string(static_cast<int>(kMinVisiblePeak)) +
+                                            " of 255, got " + std::to_string(peak) +
+                                            ": the flame would be invisible");
+}
+
+// The largest swing any of the first components gives a pixel over the
+// model's frames: the weight's spread times the image's range.
+double motion_levels(const FlameModel& m) {
+  const int e = m.components(), frames = m.frames();
+  double best = 0;
+  for (int k = 0; k < std::min(e, 16); ++k) {
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (int i = 0; i < frames; ++i) {
+      const float w = m.weights[static_cast<size_t>(i) * e + k];
+      lo = std::min(lo, w);
+      hi = std::max(hi, w);
+    }
+    float ilo = std::numeric_limits<float>::infinity(), ihi = -ilo;
+    for (size_t p = 0; p < m.eigen.pixels(); ++p) {
+      const float v = m.eigen.value(k, p);
+      ilo = std::min(ilo, v);
+      ihi = std::max(ihi, v);
+    }
+    best = std::max(best, (static_cast<double>(hi) - lo) * (static_cast<double>(ihi) - ilo));
+  }
+  return best;
+}
+
 }  // namespace
 
 std::optional<SizeProblem> learning_flames_size_problem(int np, int nw, int ne, int order) {
@@ -113,6 +156,12 @@ FlameModel FlameModel::from(ModelFile file) {
   require_finite(f, "weights", m.weights);
   m.variance = f.require("variance", DType::kF32, {e}).view<float>();
   require_finite(f, "variance", m.variance);
+  require_visible(f, "mean", m.mean);
+  if (frames > 1 && motion_levels(m) < kMinMotionLevels)
+    f.fail("tensor eigen.scale",
+           "expected the components to move the image by at least 1 of 255 over the frames "
+           "(weights' spread x eigen-image range), got " +
+               std::to_string(motion_levels(m)) + ": the flame would stand still");
 
   // Motion graph: CSR with every frame having somewhere to go.
   m.graph.offsets = f.require("graph.offsets", DType::kI32, {frames + 1}).view<int32_t>();
@@ -216,6 +265,19 @@ FlameModel FlameModel::from(ModelFile file) {
     require_finite(f, "arp.A", L.A);
     require_finite(f, "arp.d", L.d);
     require_finite(f, "arp.B", L.B);
+    require_visible(f, "lf.mean", L.mean);
+    if (std::all_of(L.B.begin(), L.B.end(), [](float b) { return b == 0.0f; }))
+      f.fail("tensor arp.B",
+             "expected some noise (all zero): the process would settle and the flame stand still");
+    // The player keeps each parameter near its training range: one range of
+    // nothing everywhere plays one pose for ever.
+    bool moves = false;
+    for (size_t i = static_cast<size_t>(L.dim); i < L.params.size() && !moves; ++i)
+      moves = L.params[i] != L.params[i % static_cast<size_t>(L.dim)];
+    if (!moves)
+      f.fail("tensor lf.params", "expected training states that differ (all " +
+                                     std::to_string(L.frames) +
+                                     " are the same): the flame would stand still");
     m.has_learning_flames = true;
   }
   m.file_ = std::move(file);

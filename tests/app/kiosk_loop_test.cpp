@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <xf86drmMode.h>
 
+#include <chrono>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -74,6 +75,32 @@ TEST(KioskLoop, SwapsBetweenFramesThenDimsWithoutAllocation) {
   const long allocations = test::stop_counting_allocations();
   EXPECT_EQ(r.frames, 120u);
   EXPECT_EQ(allocations, 0) << "operator new called during the frame loop";
+}
+
+// Issue 34: --frames bounds a run although the screen stays off (a schedule
+// at night): the frame periods asleep count, so the loop returns after
+// about max_frames / fps seconds, having drawn nothing.
+TEST(KioskLoop, FramesCountTheScreensOffPeriods) {
+  DisplayOptions o;
+  o.kind = "headless";
+  o.width = 64;
+  o.height = 64;
+  auto display = open_display(o);
+  auto scene = std::make_unique<Scene>(load_builtin_scene("test-pattern"));
+  FakeWallClock clock(0);
+  KioskOptions ko;
+  ko.scene_label = "test-pattern";
+  Kiosk kiosk(std::move(ko), clock);
+  kiosk.set_screen(false, "test");
+  LoopSettings s;
+  s.kiosk = &kiosk;
+  s.max_frames = 30;  // half a second at 60 fps
+  const auto t0 = std::chrono::steady_clock::now();
+  const LoopResult r = run_frame_loop(*display, scene, s);
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(r.frames, 0u) << "nothing drawn with the screen off";
+  EXPECT_EQ(r.frames_asleep, 30u);
+  EXPECT_GE(took, 0.45) << "the periods are real time, not skipped";
 }
 
 // A monitor's mode list, as its connector gives it.

@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   const size_t px = w * h;
   std::vector<float> mean(px, 20.0f), eig(e * px), weights(f * e, 1.0f), var{2.0f, 1.0f};
   for (size_t i = 0; i < eig.size(); ++i) eig[i] = std::sin(static_cast<float>(i));
+  // Weights that move (a model whose frames are all alike is refused).
+  for (size_t i = 0; i < weights.size(); ++i) weights[i] = 1.0f + static_cast<float>(i % 3);
   std::vector<int32_t> off{0, 1, 2, 3}, succ{1, 2, 0};
   std::vector<float> cost{1, 1, 1};
   cm::ModelWriter mw;

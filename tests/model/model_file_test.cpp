@@ -79,6 +79,10 @@ cm::ModelWriter with_flames(cm::ModelWriter mw, int order, int np = 4, int nw = 
                     h);
   std::vector<float> params(static_cast<size_t>(frames) * d, 1.0f),
       a(static_cast<size_t>(order) * d * d, 0.0f), dd(d, 0.1f), b(static_cast<size_t>(d) * d, 0.0f);
+  // Training states that differ and noise that drives the process (a still
+  // one is refused).
+  for (size_t i = 0; i < params.size(); ++i) params[i] += static_cast<float>(i % 3);
+  for (int i = 0; i < d; ++i) b[static_cast<size_t>(i) * d + i] = 0.1f;
   mw.add_f32("lf.params", {frames, d}, params);
   mw.add_f32("arp.A", {order, d, d}, a);
   mw.add_f32("arp.d", {d}, dd);
@@ -345,6 +349,60 @@ TEST(FlameModel, RefusesWhatThePlayersCannotPlay) {
   wide.add_f32("graph.cost", {static_cast<int64_t>(succ.size())}, costs);
   EXPECT_EQ(error_of(wide.bytes(), &msg), Kind::kInconsistent);
   EXPECT_NE(msg.find("1025 successors"), std::string::npos) << msg;
+}
+
+// Issue 34: values that load but would play an invisible or frozen flame
+// (found among CRC-valid mutations) are refused naming the tensor, so the
+// element plays the built-in model and `--check` says why.
+TEST(FlameModel, RefusesInvisibleOrFrozenFlames) {
+  std::string msg;
+  // The mean image scaled to nothing: a black frame.
+  cm::ModelWriter dark = small_model();
+  dark.add_f32("mean.scale", {1}, std::vector<float>{0.0f});
+  dark.add_f32("mean.offset", {1}, std::vector<float>{0.0f});
+  EXPECT_EQ(error_of(dark.bytes(), &msg), Kind::kInconsistent);
+  EXPECT_NE(msg.find("tensor mean.scale: expected a mean image whose brightest pixel is at least "
+                     "16 of 255, got 0"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("invisible"), std::string::npos) << msg;
+  // Eigen-images scaled to nothing: every frame is the mean.
+  cm::ModelWriter still = small_model();
+  still.add_f32("eigen.scale", {3}, std::vector<float>(3, 0.0f));
+  still.add_f32("eigen.offset", {3}, std::vector<float>(3, 0.0f));
+  EXPECT_EQ(error_of(still.bytes(), &msg), Kind::kInconsistent);
+  EXPECT_NE(msg.find("tensor eigen.scale: expected the components to move the image"),
+            std::string::npos)
+      << msg;
+  // Every frame's weights alike: the same.
+  cm::ModelWriter same = small_model();
+  same.add_f32("weights", {5, 3}, std::vector<float>(15, 2.0f));
+  EXPECT_EQ(error_of(same.bytes(), &msg), Kind::kInconsistent);
+  EXPECT_NE(msg.find("the flame would stand still"), std::string::npos) << msg;
+  // A tiny motion still plays: a swing of 1 level or more somewhere.
+  cm::ModelWriter faint = small_model();
+  std::vector<float> w(15, 0.0f);
+  w[3] = 1.0f;  // frame 1, component 0: one unit over an image range of about 2
+  faint.add_f32("weights", {5, 3}, w);
+  EXPECT_NO_THROW(cm::FlameModel::from(cm::ModelFile::from_bytes(faint.bytes(), "m")));
+  // Learning Flames: a black shape image, no noise, one training state.
+  const int d = 4 + 4 + 1 + 2;
+  cm::ModelWriter lf_dark = with_flames(small_model(), 2);
+  lf_dark.add_f32("lf.mean.scale", {1}, std::vector<float>{0.0f});
+  lf_dark.add_f32("lf.mean.offset", {1}, std::vector<float>{3.0f});
+  EXPECT_EQ(error_of(lf_dark.bytes(), &msg), Kind::kInconsistent);
+  EXPECT_NE(msg.find("tensor lf.mean.scale: expected a mean image whose brightest pixel"),
+            std::string::npos)
+      << msg;
+  cm::ModelWriter quiet = with_flames(small_model(), 2);
+  quiet.add_f32("arp.B", {d, d}, std::vector<float>(static_cast<size_t>(d) * d, 0.0f));
+  EXPECT_EQ(error_of(quiet.bytes(), &msg), Kind::kInconsistent);
+  EXPECT_NE(msg.find("tensor arp.B: expected some noise"), std::string::npos) << msg;
+  cm::ModelWriter one_pose = with_flames(small_model(), 2);
+  one_pose.add_f32("lf.params", {6, d}, std::vector<float>(static_cast<size_t>(6) * d, 1.5f));
+  EXPECT_EQ(error_of(one_pose.bytes(), &msg), Kind::kInconsistent);
+  EXPECT_NE(msg.find("tensor lf.params: expected training states that differ"), std::string::npos)
+      << msg;
 }
 
 // Issue 15: special and huge files are refused by what they are, before any read.

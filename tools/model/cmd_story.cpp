@@ -2,10 +2,12 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "colour_flags.h"
 #include "core/cli_usage.h"
 #include "core/error.h"
+#include "core/wxh.h"
 #include "display/frame_writer.h"
 #include "embedded_models.h"
 #include "model/flame_model.h"
@@ -37,6 +39,7 @@ int run_story(int argc, char** argv) {
   std::string path, out;
   uint64_t seed = 0;
   float max_seam = 0;
+  std::string size;
   bool gray = false, no_render = false;
   candela::tools::ColourFlags colour;
   app.add_option("STORY", path, "story file (TOML), or builtin:NAME (firmware/stories/NAME.toml)")
@@ -47,6 +50,10 @@ int run_story(int argc, char** argv) {
                  "largest seam ratio allowed at a joint (step across it / the model's median step; "
                  "default: the model's 99th-percentile step, at least 2)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--size", size,
+                 "frame size WxH (16 to 4096 a side; default: the model's own): the flame scaled "
+                 "to fit, centred on black")
+      ->check(candela::wxh_range({16, 16}, {4096, 4096}));
   app.add_flag("--gray", gray, "write gray frames instead of coloured ones");
   app.add_flag("--no-render", no_render, "only plan and report the joints");
   colour.add_to(app);
@@ -56,6 +63,8 @@ int run_story(int argc, char** argv) {
     return candela::usage_exit(app, e);
   }
   if (out.empty() && !no_render) throw std::invalid_argument("--out: say where (or --no-render)");
+  std::optional<candela::WxH> frame_size;  // checked by the option's validator
+  if (!size.empty()) frame_size = candela::parse_wxh(size, {16, 16}, {4096, 4096});
   const cs::StoryDesc story = cs::open_story(path);
   const cm::FlameModel m = open_model(story);
   if (!seed) seed = story.has_seed ? story.seed : 1;
@@ -80,14 +89,17 @@ int run_story(int argc, char** argv) {
         j.beta, j.how.c_str(), bad ? "  <-- over the bound" : "");
   }
   if (!no_render) {
-    const int w = m.width(), h = m.height();
+    const int mw = m.width(), mh = m.height();
+    const int w = frame_size ? frame_size->width : mw, h = frame_size ? frame_size->height : mh;
     auto sink = candela::open_frame_sink(out, w, h, static_cast<int>(std::lround(plan.fps())));
-    std::vector<float> img(m.mean.pixels());
+    std::vector<float> img(m.mean.pixels()), fitted;
     std::vector<uint8_t> rgba(static_cast<size_t>(w) * h * 4);
     for (int i = 0; i < plan.frames(); ++i) {
       m.reconstruct({plan.weights_of(i), static_cast<size_t>(plan.components())}, img);
-      const candela::Image pic = gray ? candela::tools::gray_image(img.data(), w, h)
-                                      : colour.colourise(img.data(), w, h, m.colour);
+      if (frame_size) fitted = candela::tools::fit_gray(img.data(), mw, mh, w, h);
+      const float* frame = frame_size ? fitted.data() : img.data();
+      const candela::Image pic =
+          gray ? candela::tools::gray_image(frame, w, h) : colour.colourise(frame, w, h, m.colour);
       // The sink takes RGBA rows bottom to top (as glReadPixels gives them).
       for (int y = 0; y < h; ++y) {
         const uint8_t* src = pic.row(y);

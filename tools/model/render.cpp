@@ -18,6 +18,36 @@ Image gray_image(const float* gray, int width, int height) {
   return img;
 }
 
+std::vector<float> fit_gray(const float* gray, int width, int height, int out_width,
+                            int out_height) {
+  std::vector<float> out(static_cast<size_t>(out_width) * out_height, 0.0f);
+  const double scale =
+      std::min(static_cast<double>(out_width) / width, static_cast<double>(out_height) / height);
+  const int fit_w = std::max(1, static_cast<int>(std::lround(width * scale)));
+  const int fit_h = std::max(1, static_cast<int>(std::lround(height * scale)));
+  const int x0 = (out_width - fit_w) / 2, y0 = (out_height - fit_h) / 2;
+  auto at = [&](int x, int y) {
+    return gray[static_cast<size_t>(std::clamp(y, 0, height - 1)) * width +
+                std::clamp(x, 0, width - 1)];
+  };
+  for (int y = 0; y < fit_h; ++y) {
+    // Pixel centres mapped onto the source's (edges clamped).
+    const double sy = (y + 0.5) * height / fit_h - 0.5;
+    const int iy = static_cast<int>(std::floor(sy));
+    const float fy = static_cast<float>(sy - iy);
+    float* row = out.data() + static_cast<size_t>(y0 + y) * out_width + x0;
+    for (int x = 0; x < fit_w; ++x) {
+      const double sx = (x + 0.5) * width / fit_w - 0.5;
+      const int ix = static_cast<int>(std::floor(sx));
+      const float fx = static_cast<float>(sx - ix);
+      const float top = at(ix, iy) + fx * (at(ix + 1, iy) - at(ix, iy));
+      const float bottom = at(ix, iy + 1) + fx * (at(ix + 1, iy + 1) - at(ix, iy + 1));
+      row[x] = top + fy * (bottom - top);
+    }
+  }
+  return out;
+}
+
 Image colourise(const float* gray, int width, int height, float hue_deg, float saturation,
                 float glow_radius, float glow_strength, float black_level, float hue_top_deg) {
   const size_t n = static_cast<size_t>(width) * height;

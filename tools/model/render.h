@@ -21,6 +21,11 @@ Image colourise(const float* gray, int width, int height, float hue_deg, float s
                 float hue_top_deg = std::numeric_limits<float>::quiet_NaN());
 // Display-encoded 0..255 to an 8-bit gray image.
 Image gray_image(const float* gray, int width, int height);
+// A gray frame scaled (bilinear) to fit inside out_width x out_height, its
+// aspect kept, centred on black (0): a 128x160 model frame at 1280x720 is a
+// 576x720 flame in the middle. Rows top-down, as the input.
+std::vector<float> fit_gray(const float* gray, int width, int height, int out_width,
+                            int out_height);
 
 // A small RGB raster for plots.
 struct Canvas {
