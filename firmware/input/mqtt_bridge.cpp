@@ -2,6 +2,7 @@
 
 #include <arpa/inet.h>
 #include <mosquitto.h>
+#include <mqtt_protocol.h>
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -203,6 +204,21 @@ void MqttBridge::start() {
   }
   // Small messages, answered at once: no Nagle delay (40 ms with delayed ACKs).
   mosquitto_int_option(mosq_, MOSQ_OPT_TCP_NODELAY, 1);
+  // MQTT v5, for its Maximum Packet Size: the broker then drops a message to
+  // us larger than any command, instead of libmosquitto reading all of it
+  // (a 200 MB payload took 390 MB) before the 1 KiB line limit could refuse
+  // it (issue 34). libmosquitto keeps CONNECT properties only from
+  // mosquitto_connect_bind_v5(), which connects blocking; called with port -1
+  // it stores them and refuses at once (MOSQ_ERR_INVAL), and the async
+  // connects in run() send them (tests/input/mqtt_cli.py huge checks it).
+  mosquitto_int_option(mosq_, MOSQ_OPT_PROTOCOL_VERSION, MQTT_PROTOCOL_V5);
+  mosquitto_property* props = nullptr;
+  mosquitto_property_add_int32(&props, MQTT_PROP_MAXIMUM_PACKET_SIZE, kMaxPacketBytes);
+  const int seeded =
+      mosquitto_connect_bind_v5(mosq_, s_.host.c_str(), -1, s_.keepalive_s, nullptr, props);
+  mosquitto_property_free_all(&props);
+  if (seeded != MOSQ_ERR_INVAL)
+    LOG_WARN("mqtt: could not set the maximum packet size (%s)", mosquitto_strerror(seeded));
   const std::string avail = s_.prefix + "/availability";
   mosquitto_will_set(mosq_, avail.c_str(), 7, "offline", 1, true);
   mosquitto_connect_callback_set(mosq_, [](mosquitto*, void* self, int rc) {
@@ -343,6 +359,16 @@ std::string MqttBridge::discovery_json(Entity entity) const {
   return j.dump(-1, ' ', false, Json::error_handler_t::replace);
 }
 
+namespace {
+// A CONNACK's v5 reason code, worded as mosquitto_connack_string() words the
+// v3 ones ("not authorised" reads the same either way).
+std::string refusal_text(int rc) {
+  if (rc == MQTT_RC_BAD_USERNAME_OR_PASSWORD || rc == MQTT_RC_NOT_AUTHORIZED)
+    return std::string("not authorised (") + mosquitto_reason_string(rc) + ")";
+  return mosquitto_reason_string(rc);
+}
+}  // namespace
+
 void MqttBridge::on_connect(int rc) {
   if (rc != 0) {
     // Refused: a wrong password, an unknown client... said once per reason.
@@ -350,8 +376,10 @@ void MqttBridge::on_connect(int rc) {
       LOG_ERROR(
           "mqtt: broker %s:%d refused the connection: %s%s; retrying with backoff (the display "
           "runs on)",
-          s_.host.c_str(), s_.port, mosquitto_connack_string(rc),
-          rc == 4 || rc == 5 ? " (check [mqtt] username and password_file)" : "");
+          s_.host.c_str(), s_.port, refusal_text(rc).c_str(),
+          rc == MQTT_RC_BAD_USERNAME_OR_PASSWORD || rc == MQTT_RC_NOT_AUTHORIZED
+              ? " (check [mqtt] username and password_file)"
+              : "");
     last_refusal_ = rc;
     refused_ = true;
     reported_ = true;

@@ -132,6 +132,9 @@ class MqttBridge {
   void publish_room();  // the gusts started here since the last call
   // An event, not a setting: gust, blowout, reload (refused when retained).
   static bool is_momentary(std::string_view verb);
+  // The largest MQTT packet the broker may send us (v5 Maximum Packet Size):
+  // a command's topic and 1 KiB line with room to spare.
+  static constexpr int kMaxPacketBytes = 8192;
   void publish(const std::string& topic, const std::string& payload, bool retain, int qos = 1);
   void publish_state(bool force);
   enum class Entity { kVolume, kGust, kScreen, kBrightness, kScene };

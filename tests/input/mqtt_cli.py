@@ -31,6 +31,10 @@ paho-mqtt (Debian `python3-paho-mqtt`).
                 the origin ignores its own, nobody re-publishes, the one without
                 [room] hears nothing; a bad message is logged and dropped, a late one
                 is started at once
+  huge          a 32 MiB set/scene payload (issue 34: buffered whole before the 1 KiB
+                limit, RSS +390 MB for 200 MB): candela connects with MQTT v5 and a
+                Maximum Packet Size, so the broker drops it: no reply to it, candela's
+                peak RSS grows by less than 8 MiB, and the next command is answered
   bench         (not run by ctest) the round trips on loopback: the broker's echo, and
                 a set/brightness to candela's reply and to its state reporting it
 """
@@ -348,6 +352,38 @@ def case_commands():
     rc = stop_candela(p)
     check(client.wait(PREFIX + "/availability", lambda x: x == "offline") is not None, "offline on exit")
     check(rc == 0, "exit 0", candela_log())
+    client.close()
+    broker.stop()
+
+
+def peak_rss_kib(pid):
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1])
+    return -1
+
+
+def case_huge():
+    port = free_port()
+    broker = Broker(port)
+    client = Client(port)
+    p = start_candela(write_config(port))
+    check(client.wait(PREFIX + "/state") is not None, "connected and reporting", candela_log())
+    # Answered: the command path is warm before the peak is read.
+    client.send("volume", "0.5")
+    check(client.wait(PREFIX + "/reply") == "ok", "set/volume 0.5 answers ok")
+    before = peak_rss_kib(p.pid)
+    client.c.publish(PREFIX + "/set/scene", b"x" * (32 << 20), qos=1).wait_for_publish(60)
+    client.send("volume", "0.25")
+    r = client.wait(PREFIX + "/reply", timeout=60)
+    check(r == "ok", "the command after it is answered, and first: the huge one got no reply "
+          "(the broker dropped it)", r)
+    after = peak_rss_kib(p.pid)
+    check(before > 0 and after - before < 8 << 10,
+          "candela's peak RSS grew by %d KiB (under 8 MiB; the payload is 32 MiB)" % (after - before))
+    check("maximum packet size" not in candela_log(), "the packet size was set", candela_log())
+    check(stop_candela(p) == 0, "exit 0", candela_log())
     client.close()
     broker.stop()
 
@@ -747,7 +783,7 @@ def case_bench():
 
 try:
     {"bench": case_bench, "room": case_room, "commands": case_commands, "reconnect": case_reconnect, "absent": case_absent,
-     "password": case_password, "off": case_off, "config": case_config,
+     "password": case_password, "huge": case_huge, "off": case_off, "config": case_config,
      "silent": case_silent, "retained": case_retained, "tls": case_tls}[CASE]()
 finally:
     for p in procs:
