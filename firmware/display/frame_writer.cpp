@@ -128,6 +128,85 @@ int spawn_ffmpeg(std::vector<std::string>& args, int stdin_fd, int close_fd, pid
 }
 
 // Waits for a child; true if it exited with status 0.
+// A big-endian number of `n` bytes at `p`.
+uint64_t big_endian(const unsigned char* p, int n) {
+  uint64_t v = 0;
+  for (int i = 0; i < n; ++i) v = v << 8 | p[i];
+  return v;
+}
+
+}  // namespace
+
+std::string video_file_problem(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return std::string("cannot be read (") + std::strerror(errno) + ")";
+  struct Closer {
+    std::FILE* f;
+    ~Closer() { std::fclose(f); }
+  } closer{f};
+  struct stat st {};
+  if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) return "is not a regular file";
+  const uint64_t size = static_cast<uint64_t>(st.st_size);
+  unsigned char h[16];
+  if (ends_with(path, ".mp4")) {
+    // ISO BMFF: top-level boxes (32-bit size + type, size 1: a 64-bit size
+    // follows) tiling the file, one of them the index (moov) that ffmpeg
+    // writes last.
+    bool index = false;
+    uint64_t at = 0;
+    while (at < size) {
+      if (fseeko(f, static_cast<off_t>(at), SEEK_SET) != 0 || std::fread(h, 1, 8, f) != 8)
+        return "ends inside a box header: the file was cut short";
+      uint64_t box = big_endian(h, 4);
+      if (box == 1) {
+        if (std::fread(h + 8, 1, 8, f) != 8)
+          return "ends inside a box header: the file was cut short";
+        box = big_endian(h + 8, 8);
+      } else if (box == 0) {
+        box = size - at;  // to the end of the file
+      }
+      if (box < 8 || box > size - at) return "ends inside a box: the file was cut short";
+      index = index || std::memcmp(h + 4, "moov", 4) == 0;
+      at += box;
+    }
+    if (!index) return "has no index (moov): the writer stopped before finishing it";
+    return "";
+  }
+  if (ends_with(path, ".mkv") || ends_with(path, ".webm")) {
+    // Matroska: the EBML header, then the Segment, whose size ffmpeg writes
+    // at the end (all ones until then: "unknown").
+    auto vint = [&](uint64_t& value, int& length, bool keep_marker) {
+      int c = std::fgetc(f);
+      if (c <= 0) return false;
+      length = 1;
+      while (length <= 8 && !(c & (0x80 >> (length - 1)))) ++length;
+      if (length > 8) return false;
+      value = keep_marker ? static_cast<uint64_t>(c) : static_cast<uint64_t>(c) & (0xFFu >> length);
+      for (int i = 1; i < length; ++i) {
+        const int b = std::fgetc(f);
+        if (b < 0) return false;
+        value = value << 8 | static_cast<uint64_t>(b);
+      }
+      return true;
+    };
+    uint64_t id = 0, len = 0;
+    int n = 0, m = 0;
+    if (!vint(id, n, true) || id != 0x1A45DFA3 || !vint(len, m, false) ||
+        fseeko(f, static_cast<off_t>(len), SEEK_CUR) != 0)
+      return "has no Matroska header: the file was cut short";
+    if (!vint(id, n, true) || id != 0x18538067 || !vint(len, m, false))
+      return "has no Matroska segment: the file was cut short";
+    if (len == (uint64_t{1} << (7 * m)) - 1)
+      return "has a segment of unknown size: the writer stopped before finishing it";
+    if (static_cast<uint64_t>(ftello(f)) + len > size)
+      return "is shorter than its segment: the file was cut short";
+    return "";
+  }
+  return "";
+}
+
+namespace {
+
 bool wait_ok(pid_t pid) {
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
@@ -204,6 +283,11 @@ class FfmpegSink final : public FrameSink {
     ::close(fd_);
     fd_ = -1;
     if (!wait_ok(pid_)) throw RuntimeError(path_ + ": ffmpeg failed to encode the video");
+    // ffmpeg exits 0 when the disk fills as it writes the index (issue 34):
+    // the file is checked, not its exit status trusted.
+    if (const std::string why = video_file_problem(path_); !why.empty())
+      throw RuntimeError(path_ + ": the video " + why + " (is the disk full?); it will not play" +
+                         (sound_path_.empty() ? "" : "; its sound is " + sound_path_));
     mux_sound();
   }
 
@@ -237,7 +321,8 @@ class FfmpegSink final : public FrameSink {
                                      tmp};
     pid_t pid = -1;
     const int rc = spawn_ffmpeg(args, -1, -1, &pid);
-    if (rc != 0 || !wait_ok(pid) || std::rename(tmp.c_str(), path_.c_str()) != 0) {
+    if (rc != 0 || !wait_ok(pid) || !video_file_problem(tmp).empty() ||
+        std::rename(tmp.c_str(), path_.c_str()) != 0) {
       unlink(tmp.c_str());
       throw RuntimeError(path_ +
                          ": ffmpeg could not add the sound; the video (silent) is there and "

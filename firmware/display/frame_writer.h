@@ -36,6 +36,11 @@ std::unique_ptr<FrameSink> open_frame_sink(const std::string& path, int width, i
 // exists); else what is expected instead ("a folder (...) or a .y4m ... file"). "frames.avi" no
 // longer silently became a folder of PNGs.
 std::string frame_sink_problem(const std::string& path);
+// Empty when the video at `path` is whole: an .mp4's boxes tile the file and
+// hold its index (moov); an .mkv's or .webm's segment has its size, within
+// the file. Else what is wrong ("has no index (moov): ..."). Other names: "".
+// ffmpeg exits 0 when the disk fills as it writes the trailer.
+std::string video_file_problem(const std::string& path);
 
 class AsyncFrameWriter {
  public:

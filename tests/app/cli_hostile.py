@@ -23,6 +23,7 @@ from programs import program  # noqa: E402
 CASE, BUILD = sys.argv[1], os.path.abspath(sys.argv[2])
 CANDELA = program(os.path.join(BUILD, "firmware", "candela"))
 WORK = tempfile.mkdtemp(prefix="candela-hostile-")
+SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 ELEMENT = '[[element]]\nkind = "test_pattern"\n'
 
 
@@ -193,6 +194,71 @@ def case_sigpipe():
                   "--out", "/nonexistent/dir/x.mp4", timeout=60)
     check(rc == 1, "exit 1 (got %d; 141 was SIGPIPE)" % rc)
     check("x.mp4: ffmpeg" in out, "says ffmpeg could not take the frames", "\n" + out[-800:])
+
+
+def mp4_whole(path):
+    """The mp4's top-level boxes tile the file and include its index (moov)."""
+    try:
+        b = open(path, "rb").read()
+    except OSError:
+        return False
+    at, index = 0, False
+    while at + 8 <= len(b):
+        size = int.from_bytes(b[at:at + 4], "big")
+        if size == 1:
+            size = int.from_bytes(b[at + 8:at + 16], "big")
+        elif size == 0:
+            size = len(b) - at
+        if size < 8:
+            return False
+        index = index or b[at + 4:at + 8] == b"moov"
+        at += size
+    return at == len(b) and index
+
+
+def case_full_disk():
+    """Issue 34: a disk that fills while an mp4 with sound is written. ffmpeg
+    exits 0 when the disk fills as it writes the index; the log said the
+    video was there. Whatever the fill point, the log tells the truth: exit 0
+    only with a whole video; "the video (silent) is there" only when it is.
+    A small tmpfs in a mount namespace of its own (root, or a user
+    namespace); exit 77 (skipped) where neither is allowed."""
+    ns = None
+    for cmd in (["unshare", "-m"], ["unshare", "-rm"]):
+        if subprocess.run(cmd + ["sh", "-c", "mount -t tmpfs -o size=64k tmpfs /mnt"],
+                          capture_output=True).returncode == 0:
+            ns = cmd
+            break
+    if not ns:
+        print("skipped: no mount namespace here (unshare -m / -rm refused)")
+        sys.exit(77)
+    disk = os.path.join(WORK, "disk")
+    os.mkdir(disk)
+    out = os.path.join(disk, "fire.mp4")
+    seen_cut = False
+    for size in ("400k", "900k", "1300k", "1700k", "4m"):
+        # The video is copied out of the namespace's tmpfs before it goes.
+        script = ('mount -t tmpfs -o size=%s tmpfs "$1" && shift && "$@"; rc=$?; '
+                  'cp "%s" "%s" 2>/dev/null; exit $rc') % (size, out, os.path.join(WORK, "fire.mp4.kept"))
+        scene = os.path.join(SOURCE, "firmware", "scenes", "eigen-fireplace.toml")  # with sound
+        p = subprocess.run(ns + ["sh", "-c", script, "sh", disk, *CANDELA, "--scene", scene,
+                                 "--display", "headless", "--size", "320x180", "--frames", "300",
+                                 "--out", out], capture_output=True, text=True, timeout=120)
+        log = p.stdout + p.stderr
+        kept = os.path.join(WORK, "fire.mp4.kept")
+        whole = mp4_whole(kept)
+        if os.path.exists(kept):
+            os.unlink(kept)
+        what = "tmpfs of %s: exit %d, video %s" % (size, p.returncode, "whole" if whole else "not whole")
+        if p.returncode == 0:
+            check(whole, what + ": exit 0 with a whole video", log[-800:])
+        else:
+            check("candela: error: " + out in log, what + ": the log names the video", log[-800:])
+            check(whole or "is there" not in log, what + ": says the video is there only when it is",
+                  log[-800:])
+            seen_cut = seen_cut or "no index (moov)" in log
+        print("     " + what)
+    check(seen_cut, "one fill point cut the index and the log said so")
 
 
 CASES = {k[5:]: v for k, v in globals().items() if k.startswith("case_")}

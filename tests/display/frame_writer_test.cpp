@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -105,6 +107,59 @@ TEST(FrameWriter, UnwritablePlaceIsAClearError) {
     EXPECT_NE(std::string(e.what()).find("/proc/candela-cannot-exist/frames"), std::string::npos)
         << e.what();
   }
+}
+
+// Issue 34: ffmpeg exits 0 when the disk fills as it writes the video's
+// index, so the writer checks the file itself. A whole .mp4/.mkv passes;
+// the same cut short, or with its index or segment size missing, does not.
+std::vector<char> read_all(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+void write_all(const fs::path& p, const std::vector<char>& b, size_t n) {
+  std::ofstream f(p, std::ios::binary | std::ios::trunc);
+  f.write(b.data(), static_cast<std::streamsize>(std::min(n, b.size())));
+}
+
+TEST(FrameWriter, VideoCheckFindsAVideoCutShort) {
+  const fs::path dir = temp_dir("videocheck");
+  fs::create_directories(dir);
+  for (const char* ext : {".mp4", ".mkv"}) {
+    SCOPED_TRACE(ext);
+    const fs::path whole = dir / (std::string("whole") + ext);
+    auto sink = open_frame_sink(whole.string(), 32, 24, 30);  // ffmpeg: install-deps.sh
+    for (int i = 0; i < 30; ++i) sink->write(pattern(32, 24, i).data());
+    sink->close();
+    EXPECT_EQ(video_file_problem(whole.string()), "") << "the finished video";
+    const std::vector<char> bytes = read_all(whole);
+    ASSERT_GT(bytes.size(), 1000u);
+    const fs::path cut = dir / (std::string("cut") + ext);
+    for (size_t n : {size_t{0}, size_t{20}, bytes.size() / 2, bytes.size() - 9}) {
+      write_all(cut, bytes, n);
+      EXPECT_NE(video_file_problem(cut.string()), "") << "cut to " << n << " bytes";
+    }
+  }
+  // The index (moov) renamed away: boxes tile the file but nothing indexes it.
+  std::vector<char> mp4 = read_all(dir / "whole.mp4");
+  const std::string moov = "moov";
+  auto at = std::search(mp4.begin(), mp4.end(), moov.begin(), moov.end());
+  ASSERT_NE(at, mp4.end());
+  std::copy_n("free", 4, at);
+  write_all(dir / "noindex.mp4", mp4, mp4.size());
+  EXPECT_EQ(video_file_problem((dir / "noindex.mp4").string()),
+            "has no index (moov): the writer stopped before finishing it");
+  // The Matroska segment's size left unknown (8-byte vint of all ones), as a
+  // writer that never reached its trailer leaves it.
+  std::vector<char> mkv = read_all(dir / "whole.mkv");
+  const char segment_id[] = {'\x18', '\x53', '\x80', '\x67'};
+  auto seg = std::search(mkv.begin(), mkv.end(), segment_id, segment_id + 4);
+  ASSERT_NE(seg, mkv.end());
+  ASSERT_EQ(static_cast<unsigned char>(seg[4]), 0x01) << "ffmpeg writes an 8-byte size";
+  std::fill_n(seg + 5, 7, '\xff');
+  write_all(dir / "unknown.mkv", mkv, mkv.size());
+  EXPECT_EQ(video_file_problem((dir / "unknown.mkv").string()),
+            "has a segment of unknown size: the writer stopped before finishing it");
+  fs::remove_all(dir);
 }
 
 }  // namespace
