@@ -10,7 +10,11 @@
 namespace candela {
 
 KioskConfig load_config_file(const std::string& path) {
-  const toml::table root = parse_toml_text(read_bounded_file(path, FileKind::kScene), path);
+  return load_config_text(read_bounded_file(path, FileKind::kScene), path);
+}
+
+KioskConfig load_config_text(std::string_view text, const std::string& path) {
+  const toml::table root = parse_toml_text(text, path);
   ParamReader r(&root, path, "");
   KioskConfig c;
   // path(): resolved against the config's folder, and refused now if it is

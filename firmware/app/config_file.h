@@ -13,6 +13,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "app/schedule.h"
 #include "input/mqtt_bridge.h"
@@ -27,5 +28,8 @@ struct KioskConfig {
 };
 
 KioskConfig load_config_file(const std::string& path);
+// The same from text already read; `path` names it in errors and is where
+// relative paths start (the config fuzz target's way in).
+KioskConfig load_config_text(std::string_view text, const std::string& path);
 
 }  // namespace candela

@@ -256,6 +256,7 @@ ControlServer::~ControlServer() {
 int64_t ControlServer::expire_idle(int64_t now) {
   int64_t next = INT64_MAX;
   for (size_t i = clients_.size(); i-- > 0;) {
+    if (clients_[i].waiting) continue;  // silent because it waits on us
     const int64_t due = clients_[i].last_ns + idle_ns_;
     if (due <= now) {
       const char msg[] = "error: idle for too long; closing\n";
@@ -280,6 +281,51 @@ void ControlServer::drop(size_t index) {
 
 void ControlServer::serve(const pollfd* fds, size_t n,
                           const std::function<std::string(std::string_view)>& answer) {
+  serve(fds, n, [&](std::string_view line, uint64_t) { return Answer{answer(line)}; });
+}
+
+bool ControlServer::pump(Client& c, const Answerer& answer) {
+  size_t nl;
+  while (!c.waiting && (nl = c.buffer.find('\n')) != std::string::npos) {
+    const uint64_t ticket = ++next_ticket_;
+    Answer a = answer(std::string_view(c.buffer).substr(0, nl), ticket);
+    c.buffer.erase(0, nl + 1);
+    if (a.deferred) {
+      c.waiting = ticket;
+      break;
+    }
+    a.reply += '\n';
+    // Replies are short; a client that does not read them is dropped.
+    if (send(c.fd, a.reply.data(), a.reply.size(), MSG_NOSIGNAL | MSG_DONTWAIT) !=
+        static_cast<ssize_t>(a.reply.size()))
+      return false;
+  }
+  // A line longer than the limit; or, while a reply is awaited, more lines
+  // queued than a few (a client cannot fill memory meanwhile).
+  if (c.buffer.size() > (c.waiting ? 4 * kMaxLine : kMaxLine)) {
+    const char msg[] = "error: line too long\n";
+    (void)send(c.fd, msg, sizeof msg - 1, MSG_NOSIGNAL | MSG_DONTWAIT);
+    return false;
+  }
+  return true;
+}
+
+void ControlServer::complete(uint64_t ticket, const std::string& reply, const Answerer& answer) {
+  for (size_t i = 0; i < clients_.size(); ++i) {
+    Client& c = clients_[i];
+    if (c.waiting != ticket) continue;
+    c.waiting = 0;
+    c.last_ns = monotonic_ns();
+    const std::string line = reply + '\n';
+    if (send(c.fd, line.data(), line.size(), MSG_NOSIGNAL | MSG_DONTWAIT) !=
+            static_cast<ssize_t>(line.size()) ||
+        !pump(c, answer))
+      drop(i);
+    return;
+  }
+}
+
+void ControlServer::serve(const pollfd* fds, size_t n, const Answerer& answer) {
   if (n == 0) return;
   // Clients first (fds[1..] match clients_ as add_fds listed them), newest last.
   std::vector<size_t> gone;
@@ -295,25 +341,7 @@ void ControlServer::serve(const pollfd* fds, size_t n,
     if (got < 0) continue;
     c.last_ns = monotonic_ns();
     c.buffer.append(buf, static_cast<size_t>(got));
-    size_t nl;
-    bool bad = false;
-    while ((nl = c.buffer.find('\n')) != std::string::npos) {
-      std::string reply = answer(std::string_view(c.buffer).substr(0, nl));
-      reply += '\n';
-      c.buffer.erase(0, nl + 1);
-      // Replies are short; a client that does not read them is dropped.
-      if (send(c.fd, reply.data(), reply.size(), MSG_NOSIGNAL | MSG_DONTWAIT) !=
-          static_cast<ssize_t>(reply.size())) {
-        bad = true;
-        break;
-      }
-    }
-    if (!bad && c.buffer.size() > kMaxLine) {
-      const char msg[] = "error: line too long\n";
-      (void)send(c.fd, msg, sizeof msg - 1, MSG_NOSIGNAL | MSG_DONTWAIT);
-      bad = true;
-    }
-    if (bad) gone.push_back(i - 1);
+    if (!pump(c, answer)) gone.push_back(i - 1);
   }
   for (size_t k = gone.size(); k-- > 0;) drop(gone[k]);
   if (fds[0].revents & POLLIN) {
@@ -328,7 +356,7 @@ void ControlServer::serve(const pollfd* fds, size_t n,
         (void)send(clients_[idlest].fd, msg, sizeof msg - 1, MSG_NOSIGNAL | MSG_DONTWAIT);
         drop(idlest);
       }
-      clients_.push_back({fd, {}, monotonic_ns()});
+      clients_.push_back({fd, {}, monotonic_ns(), 0});
     }
   }
 }

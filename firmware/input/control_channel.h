@@ -76,6 +76,21 @@ class ControlServer {
   // `answer` turns one command line into one reply line (without '\n').
   void serve(const pollfd* fds, size_t n,
              const std::function<std::string(std::string_view)>& answer);
+  // What an Answerer gives for one line: the reply now, or none yet
+  // (`deferred`: work another thread does, such as loading a scene). A
+  // deferred reply comes through complete() with the line's ticket; until
+  // then that client's further lines wait (replies stay in order) and it is
+  // not dropped as idle, while every other client is served.
+  struct Answer {
+    std::string reply;
+    bool deferred = false;
+  };
+  using Answerer = std::function<Answer(std::string_view line, uint64_t ticket)>;
+  void serve(const pollfd* fds, size_t n, const Answerer& answer);
+  // The deferred reply to the line given `ticket` (on the serving thread):
+  // sent, then that client's waiting lines are answered. Its client gone
+  // since: nothing is sent.
+  void complete(uint64_t ticket, const std::string& reply, const Answerer& answer);
 
   // Drops clients silent since before now_ns - idle timeout; returns when the
   // next one would time out (monotonic ns; INT64_MAX: no clients).
@@ -90,9 +105,14 @@ class ControlServer {
   struct Client {
     int fd;
     std::string buffer;
-    int64_t last_ns;  // when it connected or last sent something
+    int64_t last_ns;       // when it connected or last sent something
+    uint64_t waiting = 0;  // the ticket of its deferred reply; 0: none
   };
   void drop(size_t index);
+  // Answers the client's complete lines until one is deferred; false: it
+  // is to be dropped (a reply it does not read, a line too long).
+  bool pump(Client& c, const Answerer& answer);
+  uint64_t next_ticket_ = 0;
   std::string path_;
   int64_t idle_ns_;
   int listen_fd_ = -1;

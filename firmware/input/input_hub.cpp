@@ -19,6 +19,7 @@
 #include "input/key_input.h"
 #include "input/kiosk_control.h"
 #include "input/room.h"
+#include "input/scene_command_worker.h"
 
 namespace candela {
 
@@ -319,7 +320,10 @@ std::string InputHub::summary_json() const {
 }
 
 std::string InputHub::answer(std::string_view line, Origin origin) {
-  const ControlCommand c = parse_control_command(line, wind_spec_);
+  return answer_command(parse_control_command(line, wind_spec_), origin);
+}
+
+std::string InputHub::answer_command(const ControlCommand& c, Origin origin) {
   switch (c.kind) {
     case ControlCommand::Kind::kWind: {
       InputEvent e;
@@ -361,7 +365,25 @@ std::string InputHub::answer(std::string_view line, Origin origin) {
 void InputHub::input_thread() {
   std::vector<pollfd> fds;
   std::vector<GpioSource*> fd_owner;
-  const auto answer_fn = [this](std::string_view line) { return answer(line); };
+  // Scene loads (scene, reload) on a thread of their own: their replies come
+  // later, and GPIO and the other clients are served meanwhile.
+  std::unique_ptr<SceneCommandWorker> scenes;
+  if (control_ && kiosk_) {
+    try {
+      scenes = std::make_unique<SceneCommandWorker>(*kiosk_);
+    } catch (const std::exception& e) {
+      LOG_ERROR("%s; scene commands are answered on the input thread", e.what());
+    }
+  }
+  const ControlServer::Answerer answer_fn = [&](std::string_view line,
+                                                uint64_t ticket) -> ControlServer::Answer {
+    const ControlCommand c = parse_control_command(line, wind_spec_);
+    if (scenes && SceneCommandWorker::runs(c)) {
+      scenes->submit(ticket, c);
+      return {{}, true};
+    }
+    return {answer_command(c, Origin::kControlSocket)};
+  };
   for (;;) {
     const int64_t now = monotonic_ns();
     int64_t deadline = now + GpioSource::kRetryNs;
@@ -370,6 +392,7 @@ void InputHub::input_thread() {
     fds.clear();
     fd_owner.clear();
     fds.push_back({stop_fd_, POLLIN, 0});
+    if (scenes) fds.push_back({scenes->fd(), POLLIN, 0});
     const size_t control_at = fds.size();
     if (control_) control_->add_fds(fds);
     const size_t gpio_at = fds.size();
@@ -388,6 +411,9 @@ void InputHub::input_thread() {
     }
     if (fds[0].revents) return;
     if (n == 0) continue;
+    if (scenes && fds[1].revents)
+      for (const auto& [ticket, reply] : scenes->take())
+        control_->complete(ticket, reply, answer_fn);
     for (size_t i = gpio_at; i < fds.size(); ++i)
       if (fds[i].revents) fd_owner[i - gpio_at]->on_poll(fds[i].revents, *input_sink_);
     if (control_) control_->serve(fds.data() + control_at, gpio_at - control_at, answer_fn);

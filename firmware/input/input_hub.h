@@ -22,6 +22,7 @@
 
 namespace candela {
 
+struct ControlCommand;
 class GpioSource;
 class ControlServer;
 class CameraSource;
@@ -105,6 +106,7 @@ class InputHub {
  private:
   class QueueSink;
   void input_thread();
+  std::string answer_command(const ControlCommand& c, Origin origin);
 
   std::vector<InputSpec> specs_;
   WindSpec wind_spec_;

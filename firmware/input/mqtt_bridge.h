@@ -107,6 +107,20 @@ class MqttStatePacer {
   bool any_ = false;
 };
 
+// What a message on PREFIX/set/VERB asks (`set_prefix` = "PREFIX/set/"):
+// the control socket's line to answer, or the reply that refuses it. A verb
+// of lower-case letters, a one-line payload within the socket's line limit;
+// an event (gust, blowout, reload) never from a retained message; a scene
+// only by one of `scenes`' names, never a path. No broker, no hub: the MQTT
+// fuzz target's way in.
+struct MqttCommand {
+  std::string line;     // for InputHub::answer; empty when refused
+  std::string refusal;  // "error: ..."; empty when accepted
+};
+MqttCommand mqtt_command(std::string_view set_prefix, std::string_view verb,
+                         std::string_view payload, bool retain,
+                         const std::vector<std::string>& scenes);
+
 class MqttBridge {
  public:
   MqttBridge(MqttSettings settings, InputHub& hub);
@@ -130,8 +144,6 @@ class MqttBridge {
   void on_message(const mosquitto_message* m);
   void on_room_message(const mosquitto_message* m);
   void publish_room();  // the gusts started here since the last call
-  // An event, not a setting: gust, blowout, reload (refused when retained).
-  static bool is_momentary(std::string_view verb);
   // The largest MQTT packet the broker may send us (v5 Maximum Packet Size):
   // a command's topic and 1 KiB line with room to spare.
   static constexpr int kMaxPacketBytes = 8192;

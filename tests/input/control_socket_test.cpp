@@ -12,9 +12,11 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <condition_variable>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <regex>
 #include <string>
 
@@ -22,6 +24,7 @@
 #include "input/control_channel.h"
 #include "input/input_event.h"
 #include "input/input_hub.h"
+#include "input/kiosk_control.h"
 #include "scene/element.h"
 #include "support/program_command.h"
 
@@ -239,6 +242,72 @@ TEST(ControlSocket, SilentClientsCannotLockEveryoneOut) {
   Client late(dir + "/ctl");
   ASSERT_TRUE(late.connected());
   EXPECT_EQ(late.ask("ping"), "pong");  // before: no reply (never accepted)
+  hub.stop();
+  fs::remove_all(dir);
+}
+
+// A kiosk whose scene loads take as long as the test says (KioskControl is
+// the interface the runtime's Kiosk implements): `scene` waits until
+// release() or 10 s; other commands answer at once.
+class SlowSceneKiosk final : public KioskControl {
+ public:
+  std::string command(const ControlCommand& c) override {
+    if (c.kind != ControlCommand::Kind::kScene) return "ok";
+    std::unique_lock lock(mu_);
+    started_ = true;
+    cv_.notify_all();
+    const bool released = cv_.wait_for(lock, std::chrono::seconds(10), [&] { return released_; });
+    return released ? "ok" : "error: never released";
+  }
+  KioskStatus status() const override { return {}; }
+  void wait_started() {
+    std::unique_lock lock(mu_);
+    cv_.wait_for(lock, std::chrono::seconds(10), [&] { return started_; });
+  }
+  void release() {
+    std::lock_guard lock(mu_);
+    released_ = true;
+    cv_.notify_all();
+  }
+
+ private:
+  std::mutex mu_;
+  std::condition_variable cv_;
+  bool started_ = false, released_ = false;
+};
+
+// Issue 34: a scene load (up to a minute: a model, a story planned, the
+// frame loop's build) ran on the input thread, so GPIO and every other
+// control client waited for it. Now it runs beside: another client is
+// answered while it loads, and its own client gets the reply when it is
+// done, its next line after it, in order.
+TEST(ControlSocket, AnotherClientIsServedWhileASceneLoads) {
+  const std::string dir = temp_dir();
+  SlowSceneKiosk kiosk;
+  InputHub hub({}, WindSpec{}, dir + "/ctl");
+  hub.set_kiosk(&kiosk);
+  hub.start();
+  Client loader(dir + "/ctl"), other(dir + "/ctl");
+  ASSERT_TRUE(loader.connected());
+  ASSERT_TRUE(other.connected());
+  const std::string lines = "scene eigen-fireplace\nping\n";
+  ASSERT_EQ(send(loader.fd(), lines.data(), lines.size(), MSG_NOSIGNAL),
+            static_cast<ssize_t>(lines.size()));
+  kiosk.wait_started();
+  // Before: no reply until the scene was done (5 s receive timeout).
+  EXPECT_EQ(other.ask("ping"), "pong") << "served while the scene loads";
+  EXPECT_EQ(other.ask("volume 0.2"), "ok");
+  pollfd p{loader.fd(), POLLIN, 0};
+  EXPECT_EQ(poll(&p, 1, 0), 0) << "the loading client has no reply yet";
+  kiosk.release();
+  char buf[64];
+  std::string got;
+  while (got.size() < std::strlen("ok\npong\n")) {
+    const ssize_t n = recv(loader.fd(), buf, sizeof buf, 0);
+    if (n <= 0) break;
+    got.append(buf, static_cast<size_t>(n));
+  }
+  EXPECT_EQ(got, "ok\npong\n") << "the scene's reply, then its next line's, in order";
   hub.stop();
   fs::remove_all(dir);
 }
