@@ -4,7 +4,8 @@
 # (tests/fuzz/corpus/<kind>/), failing on any crash, leak, sanitizer report,
 # timeout (10 s per input, 1 s per story) or more than 2 GB RSS. Prints executions per second
 # and coverage (edges) per target. A crash leaves its input in build-fuzz/:
-# add it to the corpus once fixed, as a regression input.
+# add it to the corpus once fixed, as a regression input. Then candela-tool's
+# options against hostile values (tests/fuzz/tool_options.py).
 #   tests/fuzz/run-fuzz.sh [SECONDS_PER_TARGET]   (default 20; Debian: clang libclang-rt-14-dev)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -44,4 +45,12 @@ for entry in $targets; do
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
   echo "run-fuzz: $target: ${runs:-?} inputs in ${budget} s, ${execs:-?} exec/s, ${cov:-?} edges"
 done
+# candela-tool's option parsing (issue 34): every subcommand's options given
+# hostile values, then random mixes for the budget (the normal build's tool).
+if [ -x build/tools/candela-tool/candela-tool ]; then
+  /usr/bin/python3 tests/fuzz/tool_options.py build "$budget" || status=1
+else
+  echo "run-fuzz: tool_options: no build/tools/candela-tool/candela-tool (build the normal tree first)" >&2
+  status=1
+fi
 exit $status
