@@ -380,8 +380,14 @@ def case_huge():
     check(r == "ok", "the command after it is answered, and first: the huge one got no reply "
           "(the broker dropped it)", r)
     after = peak_rss_kib(p.pid)
-    check(before > 0 and after - before < 8 << 10,
-          "candela's peak RSS grew by %d KiB (under 8 MiB; the payload is 32 MiB)" % (after - before))
+    if os.environ.get("CANDELA_EMULATOR"):
+        # Under qemu-user the process's peak is the emulator's too (its code
+        # cache grows as new code runs): the missing reply above is the proof.
+        print("     peak RSS not compared under %s" % os.environ["CANDELA_EMULATOR"].split()[0])
+    else:
+        check(before > 0 and after - before < 8 << 10,
+              "candela's peak RSS grew by %d KiB (under 8 MiB; the payload is 32 MiB)"
+              % (after - before))
     check("maximum packet size" not in candela_log(), "the packet size was set", candela_log())
     check(stop_candela(p) == 0, "exit 0", candela_log())
     client.close()
