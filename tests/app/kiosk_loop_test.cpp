@@ -25,17 +25,25 @@
 namespace candela {
 namespace {
 
-TEST(KioskLoop, SwapsBetweenFramesThenDimsWithoutAllocation) {
+std::unique_ptr<Display> headless(int width, int height) {
   DisplayOptions o;
   o.kind = "headless";
-  o.width = 160;
-  o.height = 90;
-  auto display = open_display(o);
+  o.width = width;
+  o.height = height;
+  return open_display(o);
+}
+
+KioskOptions showing(const char* scene) {
+  KioskOptions ko;
+  ko.scene_label = scene;
+  return ko;
+}
+
+TEST(KioskLoop, SwapsBetweenFramesThenDimsWithoutAllocation) {
+  auto display = headless(160, 90);
   auto scene = std::make_unique<Scene>(load_builtin_scene("default"));
   FakeWallClock clock(0);
-  KioskOptions ko;
-  ko.scene_label = "default";
-  Kiosk kiosk(std::move(ko), clock);
+  Kiosk kiosk(showing("default"), clock);
   ControlCommand dim;
   dim.kind = ControlCommand::Kind::kBrightness;
   dim.volume = 0.5f;
@@ -81,16 +89,10 @@ TEST(KioskLoop, SwapsBetweenFramesThenDimsWithoutAllocation) {
 // at night): the frame periods asleep count, so the loop returns after
 // about max_frames / fps seconds, having drawn nothing.
 TEST(KioskLoop, FramesCountTheScreensOffPeriods) {
-  DisplayOptions o;
-  o.kind = "headless";
-  o.width = 64;
-  o.height = 64;
-  auto display = open_display(o);
+  auto display = headless(64, 64);
   auto scene = std::make_unique<Scene>(load_builtin_scene("test-pattern"));
   FakeWallClock clock(0);
-  KioskOptions ko;
-  ko.scene_label = "test-pattern";
-  Kiosk kiosk(std::move(ko), clock);
+  Kiosk kiosk(showing("test-pattern"), clock);
   kiosk.set_screen(false, "test");
   LoopSettings s;
   s.kiosk = &kiosk;
