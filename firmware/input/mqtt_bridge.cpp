@@ -1,27 +1,21 @@
 #include "input/mqtt_bridge.h"
 
-#include <arpa/inet.h>
 #include <mosquitto.h>
 #include <mqtt_protocol.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
-#include <cmath>
 #include <cstring>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "core/error.h"
-#include "core/file_read.h"
 #include "core/json_parse.h"
 #include "core/log.h"
 #include "input/control_channel.h"
 #include "input/input_event.h"
 #include "input/input_hub.h"
-#include "scene/params.h"
 
 namespace candela {
 namespace {

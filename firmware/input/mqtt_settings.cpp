@@ -5,10 +5,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <cmath>
 #include <cstring>
-#include <optional>
 
 #include "core/error.h"
 #include "core/file_read.h"

@@ -157,11 +157,12 @@ FlameModel FlameModel::from(ModelFile file) {
   m.variance = f.require("variance", DType::kF32, {e}).view<float>();
   require_finite(f, "variance", m.variance);
   require_visible(f, "mean", m.mean);
-  if (frames > 1 && motion_levels(m) < kMinMotionLevels)
+  if (const double motion = frames > 1 ? motion_levels(m) : kMinMotionLevels;
+      motion < kMinMotionLevels)
     f.fail("tensor eigen.scale",
            "expected the components to move the image by at least 1 of 255 over the frames "
            "(weights' spread x eigen-image range), got " +
-               std::to_string(motion_levels(m)) + ": the flame would stand still");
+               std::to_string(motion) + ": the flame would stand still");
 
   // Motion graph: CSR with every frame having somewhere to go.
   m.graph.offsets = f.require("graph.offsets", DType::kI32, {frames + 1}).view<int32_t>();
