@@ -786,24 +786,25 @@ std::string text_of(const std::string& path) {
 TEST(Studio, AJointsMethodIsSavedAndTheStoryPassesItsSeamCheck) {
   const std::string story = work("edited-story.toml"), scene = work("edited-story-scene.toml");
   ASSERT_EQ(studio(kTour, "joint",
-                   "pause\nstory method 2 bridge\nstory set 2 steps 4\nstory method 1 grow\n"
-                   "story set 1 theta_min 900\nsave-story " +
+                   "pause\nstory method 1 grow\nstory set 1 theta_min 900\nstory set 3 steps 30\n"
+                   "save-story " +
                        story + "\nsave-scene " + scene + "\nquit\n"),
             0)
       << log_text();
   // The story reader reads it back with the chosen methods and parameters.
   const candela::story::StoryDesc d = candela::story::load_story_file(story);
   ASSERT_EQ(d.segments.size(), 4u);
-  EXPECT_EQ(d.segments[2].transition.method, candela::story::Method::kBridge);
-  EXPECT_EQ(d.segments[2].transition.steps, 4);
+  // (The tour bridges segment 1 in: made a grow, it is saved as one.)
   EXPECT_EQ(d.segments[1].transition.method, candela::story::Method::kGrow);
   EXPECT_FLOAT_EQ(d.segments[1].transition.theta_min, 900);
+  EXPECT_EQ(d.segments[3].transition.method, candela::story::Method::kGrow);
+  EXPECT_EQ(d.segments[3].transition.steps, 30);
   EXPECT_EQ(d.segments[1].repeat, 2);
   EXPECT_EQ(d.segments[3].kind, candela::story::SegmentKind::kWalk);
   EXPECT_EQ(d.seed, 17u);
   // The tool plans it and every joint passes the seam bound (exit 3 otherwise).
   ASSERT_EQ(run(std::string(CANDELA_TOOL) + " story " + story + " --no-render"), 0) << log_text();
-  EXPECT_NE(log_text().find("joint segment[1] -> segment[2]             bridge"), std::string::npos)
+  EXPECT_NE(log_text().find("joint segment[0] -> segment[1]             grow"), std::string::npos)
       << log_text();
   // A scene saved after it plays the saved story, and candela --check accepts it.
   EXPECT_NE(text_of(scene).find("story = \"" + story + "\""), std::string::npos) << text_of(scene);
@@ -876,8 +877,9 @@ TEST(Studio, UndoRestoresThePreviousStory) {
 TEST(Studio, ANewStoryFromTheModelsClipsIsSavedAndPlays) {
   const std::string saved = work("new-story.toml");
   ASSERT_EQ(studio(kFire, "new-story",
-                   "pause\ndump " + work("n0.txt") + "\nstory new\nstory add walk 2\ndump " +
-                       work("n1.txt") + "\nsave-story " + saved + "\nundo\nundo\ndump " +
+                   "pause\ndump " + work("n0.txt") +
+                       "\nstory new\nstory add walk 2\nstory method 0 lowpass\ndump " +
+                       work("n1.txt") + "\nsave-story " + saved + "\nundo\nundo\nundo\ndump " +
                        work("n2.txt") + "\nquit\n"),
             0)
       << log_text();
@@ -889,6 +891,9 @@ TEST(Studio, ANewStoryFromTheModelsClipsIsSavedAndPlays) {
   const candela::story::StoryDesc d = candela::story::load_story_file(saved);
   ASSERT_EQ(d.segments.size(), 2u);
   EXPECT_EQ(d.segments[0].clip, "fire-calm");
+  // Low-passed where the loop comes back to the clip's start (the fire's
+  // first frames are far from the walk's last, as in builtin:fire-tour).
+  EXPECT_EQ(d.segments[0].transition.method, candela::story::Method::kLowpass);
   EXPECT_EQ(d.model, fs::absolute(kFire).lexically_normal().string());
   ASSERT_EQ(run(std::string(CANDELA_TOOL) + " story " + saved + " --no-render"), 0) << log_text();
 }
@@ -949,9 +954,22 @@ TEST(Studio, ClickingATimelineBlockSelectsItsSegment) {
 }
 
 TEST(Studio, TypingAJointsStepsIsOneUndoStep) {
-  // Segment 0 (selected) is entered by grow, steps = 20: its steps field is shown.
-  ASSERT_EQ(studio(kTour, "steps-rect", "pause\nwait 2\ndump " + work("sr.txt") + "\nquit\n"), 0)
+  // Segment 3 (the walk) is entered by grow, steps = 20: a click on its
+  // timeline block selects it and its steps field is shown.
+  ASSERT_EQ(studio(kTour, "tl-rect", "pause\nwait 2\ndump " + work("tr.txt") + "\nquit\n"), 0)
       << log_text();
+  const auto tl = numbers(read_dump(work("tr.txt")).at("timeline"));
+  ASSERT_EQ(tl.size(), 4u);
+  const auto joints = numbers(read_dump(work("tr.txt")).at("story_joint_frames"));
+  const int frames = std::stoi(read_dump(work("tr.txt")).at("frames"));
+  const double f = (joints[3] + frames) / 2;
+  const std::string block = std::to_string(static_cast<int>(tl[0] + tl[2] * f / frames)) + " " +
+                            std::to_string(static_cast<int>(tl[1] + 20));
+  const std::string select = "pause\nwait 2\nx-move " + block + "\nwait 1\nx-press " + block +
+                             "\nwait 1\nx-release " + block + "\nwait 2\n";
+  ASSERT_EQ(studio(kTour, "steps-rect", select + "dump " + work("sr.txt") + "\nquit\n"), 0)
+      << log_text();
+  EXPECT_EQ(read_dump(work("sr.txt")).at("story_selected"), "3");
   const auto r = numbers(read_dump(work("sr.txt")).at("joint_steps"));
   ASSERT_EQ(r.size(), 4u);
   ASSERT_GT(r[2], 0);
@@ -960,18 +978,18 @@ TEST(Studio, TypingAJointsStepsIsOneUndoStep) {
   const std::string away = std::to_string(static_cast<int>(r[0])) + " 5";  // the flame pane
   const std::string saved = work("typed-story.toml");
   // Click into the field (it selects its text), type 3 then 7, click away.
-  ASSERT_EQ(studio(kTour, "steps-type",
-                   "pause\nwait 2\nx-move " + field + "\nwait 1\nx-press " + field +
-                       "\nwait 1\nx-release " + field + "\nwait 2\nx-key 3\nwait 2\nx-key 7\n" +
-                       "wait 2\nx-move " + away + "\nwait 1\nx-press " + away +
-                       "\nwait 1\nx-release " + away + "\nwait 2\ndump " + work("st1.txt") +
-                       "\nsave-story " + saved + "\nundo\ndump " + work("st2.txt") +
-                       "\nsave-story " + work("typed-undone.toml") + "\nquit\n"),
-            0)
+  ASSERT_EQ(
+      studio(kTour, "steps-type",
+             select + "x-move " + field + "\nwait 1\nx-press " + field + "\nwait 1\nx-release " +
+                 field + "\nwait 2\nx-key 3\nwait 2\nx-key 7\n" + "wait 2\nx-move " + away +
+                 "\nwait 1\nx-press " + away + "\nwait 1\nx-release " + away + "\nwait 2\ndump " +
+                 work("st1.txt") + "\nsave-story " + saved + "\nundo\ndump " + work("st2.txt") +
+                 "\nsave-story " + work("typed-undone.toml") + "\nquit\n"),
+      0)
       << log_text();
-  EXPECT_EQ(candela::story::load_story_file(saved).segments[0].transition.steps, 37);
+  EXPECT_EQ(candela::story::load_story_file(saved).segments[3].transition.steps, 37);
   EXPECT_EQ(read_dump(work("st1.txt")).at("undo_depth"), "1") << "one step for the typing";
-  EXPECT_EQ(candela::story::load_story_file(work("typed-undone.toml")).segments[0].transition.steps,
+  EXPECT_EQ(candela::story::load_story_file(work("typed-undone.toml")).segments[3].transition.steps,
             20)
       << "one undo takes all of it back";
 }

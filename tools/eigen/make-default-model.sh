@@ -65,6 +65,14 @@ for kind in $which; do
     ;;
   fire)
     # Five slices of a few tongues each, over a fuel bed; 10 s at 30 fps.
+    # The visible flame is the hot gas, not only where fuel burns (soot 5:
+    # with soot 90 only the burning fuel glowed, and the vortices drew it
+    # into thin ribbons, issue 35), at a low exposure (3), so tongues are
+    # broad bodies with a clipped core and crisp edges; buoyancy 1.6 (was
+    # 2.6) lets them rise slowly enough to stay whole. Slices 0.53 widths
+    # apart: nearer, their tongues merged into one sheet; further, the fire
+    # broke into more pieces than a real one (c2st and flame_features over
+    # the soot, spacing and glow: tests/realism/CMakeLists.txt).
     # Fuel that burns slowly (burn-rate 3) is carried up and burns in pockets
     # that detach; each slice's light flickers on its own (1/f, the small
     # pockets the 2-D grid cannot resolve); each slice's clock runs at its own
@@ -74,12 +82,12 @@ for kind in $which; do
     # a straight line; the shutter is open for the last of the three substeps
     # only (averaging all three showed fast tongues as three stacked copies);
     # the camera's glow joins tongues that nearly touch and its haze gives
-    # them video's dim envelope. Scenes play it at speed 1.4 (see
+    # them video's dim envelope. Scenes play it at speed 1.6 (see
     # eigen-fireplace.toml).
-    "$tool" simulate -q --preset tongues --slices 5 --slice-spacing 0.3 --fuel-bed --no-fields \
+    "$tool" simulate -q --preset tongues --slices 5 --slice-spacing 0.53 --fuel-bed --no-fields \
       --seed 21 --frames 300 --wind 0:0 --substeps 3 --warmup 2 --render radiance \
-      --exposure 10 --knee 0.65 --soot 90 --buoyancy 2.6 --burn-rate 3 --slice-flicker 0.12 --slice-rates 0.3 \
-      --slice-edge-fade 0.08 --shutter 0.34 --glow 0.3 --glow-radius 4 --haze 0.05 --haze-radius 10 --name fire-calm --out fire-calm
+      --exposure 3 --knee 0.65 --soot 5 --buoyancy 1.6 --burn-rate 3 --slice-flicker 0.08 --slice-rates 0.3 \
+      --slice-edge-fade 0.08 --shutter 0.34 --glow 0.16 --glow-radius 4 --haze 0.1 --haze-radius 10 --name fire-calm --out fire-calm
     # One clip, no labels, no background level taken off (the simulation's
     # black is black; the haze is the picture). An EigenFire per frame (300
     # at 128x160; the runtime plays up to 512): five independent fires are
