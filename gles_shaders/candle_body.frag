@@ -1,7 +1,9 @@
 #version 300 es
 // Wax lit by its own flame: diffuse light falling off with distance, and
 // light scattered inside the wax near the top, both following the flame's
-// size (so the wax flickers with it).
+// size (so the wax flickers with it). The scatter is dim beside the flame
+// (a bright rim reads as a second light: real close-ups show the flame
+// alone above 60% of its brightness).
 precision highp float;
 
 in vec3 v_world;
@@ -38,6 +40,6 @@ void main() {
     k *= k;
     sheen = k * k * 0.2;
   }
-  vec3 c = v_wax * (0.07 + flame * v_intensity * (0.5 * diffuse + 0.42 * scatter)) + flame * sheen * v_intensity;
+  vec3 c = v_wax * (0.07 + flame * v_intensity * (0.5 * diffuse + 0.22 * scatter)) + flame * sheen * v_intensity;
   o_color = vec4(min(c, vec3(1.0)), 1.0);
 }
