@@ -53,8 +53,8 @@ TEST(CandleRig, CalmStaysWithinThePapersRangesAndUsesThem) {
   // Table 1: front-back -15..15 deg, L 0.83..1, W 0.8..1; sway -5..5 deg in
   // the paper, -8..8 by default (real calm candles move more).
   const double sway_lo = p.sway_left.to_double(), sway_hi = p.sway_right.to_double();
-  EXPECT_EQ(sway_lo, -8);
-  EXPECT_EQ(sway_hi, 8);
+  EXPECT_DOUBLE_EQ(sway_lo, -8.0);
+  EXPECT_DOUBLE_EQ(sway_hi, 8.0);
   EXPECT_GE(lo_lean, sway_lo - 0.01);
   EXPECT_LE(hi_lean, sway_hi + 0.01);
   EXPECT_GE(lo_tilt, -15 - 0.01);
