@@ -13,7 +13,8 @@ jobs=$(nproc)
 # Each stage's minutes, printed as it ends: CI must stay within its budget on
 # the slowest 2-core machine it gets (the same work took 2-3x as long on some).
 started=$(date +%s)
-stage() { echo "run-all: $1 done at $(( ($(date +%s) - started) / 60 )) min"; }
+minutes() { echo $(( ($(date +%s) - started) / 60 )); }
+stage() { echo "run-all: $1 done at $(minutes) min"; }
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCANDELA_WERROR=ON
 cmake --build build -j "$jobs"
@@ -31,12 +32,12 @@ stage "normal build, its tests and the virtual board"
 # and CI's own run with it took 61 min): run where the stages so far took at
 # most CANDELA_CI_PACKAGE_BY minutes (default 20), so CI keeps its budget on
 # a slower machine.
-if [ $(( ($(date +%s) - started) / 60 )) -le "${CANDELA_CI_PACKAGE_BY:-20}" ]; then
+if [ $(minutes) -le "${CANDELA_CI_PACKAGE_BY:-20}" ]; then
   tests/package/readme_package.sh
   rm -rf build-package
   stage "README's package command from a fresh build folder"
 else
-  echo "run-all: README's package command not run: the stages above took $(( ($(date +%s) - started) / 60 )) min"
+  echo "run-all: README's package command not run: the stages above took $(minutes) min"
 fi
 
 # libgpiod 2.x (Debian 13) next to the 1.6 above, built by the other compiler
@@ -94,10 +95,10 @@ board/arm64/cross-build.sh --host-build build build-arm64
 # tests and the state equality run here, so CI stays inside its 90 minutes
 # (the renders' code ran natively above, and the state check's frames
 # compare arm64's pixels).
-if [ $(( ($(date +%s) - started) / 60 )) -le "${CANDELA_CI_ARM64_FULL_BY:-40}" ]; then
+if [ $(minutes) -le "${CANDELA_CI_ARM64_FULL_BY:-40}" ]; then
   board/arm64/test.sh build-arm64
 else
-  echo "run-all: arm64: unit tests and the state equality only (--quick): the stages above took $(( ($(date +%s) - started) / 60 )) min"
+  echo "run-all: arm64: unit tests and the state equality only (--quick): the stages above took $(minutes) min"
   board/arm64/test.sh --quick build-arm64
 fi
 board/arm64/package.sh build-arm64

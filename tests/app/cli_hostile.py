@@ -18,7 +18,7 @@ import time
 # check(), wait_for() and FAILED: tests/support/checks.py
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
 from checks import FAILED, check, wait_for  # noqa: E402
-from programs import program  # noqa: E402
+from programs import EMULATOR, program  # noqa: E402
 
 CASE, BUILD = sys.argv[1], os.path.abspath(sys.argv[2])
 CANDELA = program(os.path.join(BUILD, "firmware", "candela"))
@@ -223,10 +223,10 @@ def case_full_disk():
     only with a whole video; "the video (silent) is there" only when it is.
     A small tmpfs in a mount namespace of its own (root, or a user
     namespace); exit 77 (skipped) where neither is allowed."""
-    if os.environ.get("CANDELA_EMULATOR"):
+    if EMULATOR:
         # Five 300-frame fireplace renders take minutes under qemu-user; what
         # is checked (ffmpeg, the file check, the messages) is the same code.
-        print("skipped: under %s" % os.environ["CANDELA_EMULATOR"].split()[0])
+        print("skipped: under %s" % EMULATOR[0])
         sys.exit(77)
     ns = None
     for cmd in (["unshare", "-m"], ["unshare", "-rm"]):

@@ -41,7 +41,7 @@ paho-mqtt (Debian `python3-paho-mqtt`).
 import json, os, queue, select, shutil, signal, socket, subprocess, sys, tempfile, time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "support"))
-from programs import program  # noqa: E402
+from programs import EMULATOR, program  # noqa: E402
 
 import paho.mqtt.client as mqtt
 
@@ -380,10 +380,10 @@ def case_huge():
     check(r == "ok", "the command after it is answered, and first: the huge one got no reply "
           "(the broker dropped it)", r)
     after = peak_rss_kib(p.pid)
-    if os.environ.get("CANDELA_EMULATOR"):
+    if EMULATOR:
         # Under qemu-user the process's peak is the emulator's too (its code
         # cache grows as new code runs): the missing reply above is the proof.
-        print("     peak RSS not compared under %s" % os.environ["CANDELA_EMULATOR"].split()[0])
+        print("     peak RSS not compared under %s" % EMULATOR[0])
     else:
         check(before > 0 and after - before < 8 << 10,
               "candela's peak RSS grew by %d KiB (under 8 MiB; the payload is 32 MiB)"
