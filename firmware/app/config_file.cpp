@@ -4,7 +4,7 @@
 
 #include "app/kiosk.h"
 #include "core/file_read.h"
-#include "scene/params.h"
+#include "params/params.h"
 #include "scene/scene_file.h"
 
 namespace candela {

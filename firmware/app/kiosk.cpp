@@ -14,7 +14,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "embedded_scenes.h"
-#include "scene/params.h"
+#include "params/params.h"
 #include "scene/scene.h"
 
 namespace candela {

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "scene/params.h"
+#include "params/params.h"
 
 namespace candela {
 namespace {

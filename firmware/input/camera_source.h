@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "input/input_event.h"
-#include "input/input_spec.h"
+#include "scene/input_spec.h"
 #include "wind/wind_field.h"
 
 namespace candela {

@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "input/input_spec.h"
+#include "scene/input_spec.h"
 
 namespace candela {
 

@@ -16,8 +16,8 @@
 
 #include "display/display.h"
 #include "input/input_event.h"
-#include "input/input_spec.h"
 #include "input/spsc_queue.h"
+#include "scene/input_spec.h"
 #include "wind/wind_field.h"
 
 namespace candela {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "input/input_event.h"
-#include "input/input_spec.h"
+#include "scene/input_spec.h"
 
 namespace candela {
 

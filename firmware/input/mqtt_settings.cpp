@@ -12,7 +12,7 @@
 #include "core/log.h"
 #include "input/control_channel.h"
 #include "input/mqtt_bridge.h"
-#include "scene/params.h"
+#include "params/params.h"
 
 namespace candela {
 namespace {

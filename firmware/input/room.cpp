@@ -7,7 +7,7 @@
 
 #include "core/json_parse.h"
 #include "input/mqtt_bridge.h"
-#include "scene/params.h"
+#include "params/params.h"
 
 namespace candela {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "input/input_event.h"
-#include "input/input_spec.h"
+#include "scene/input_spec.h"
 #include "wind/wind_field.h"
 
 namespace candela {

@@ -34,6 +34,7 @@
 #include "core/state_hash.h"
 #include "gl/math.h"
 #include "sound/sound_cue.h"
+#include "wind/step_context.h"
 
 namespace candela {
 
@@ -45,13 +46,6 @@ class ParamReader;
 enum class DrawPass { kBackground, kGlow, kBody, kFlame, kOverlay };
 inline constexpr DrawPass kAllPasses[] = {DrawPass::kBackground, DrawPass::kGlow, DrawPass::kBody,
                                           DrawPass::kFlame, DrawPass::kOverlay};
-
-struct StepContext {
-  uint64_t step = 0;  // steps since start
-  Fixed dt;           // seconds per step
-  Fixed time;         // seconds since start
-  const WindField* wind = nullptr;
-};
 
 struct FrameContext {
   int width = 0, height = 0;

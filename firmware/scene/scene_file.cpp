@@ -6,8 +6,8 @@
 #include "core/error.h"
 #include "core/file_read.h"
 #include "embedded_scenes.h"
-#include "input/input_config.h"
-#include "scene/params.h"
+#include "params/params.h"
+#include "scene/input_table.h"
 
 namespace candela {
 SceneDesc load_scene_text(std::string_view text, const std::string& name,

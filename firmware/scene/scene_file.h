@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "gl/math.h"
-#include "input/input_spec.h"
+#include "params/toml_text.h"
 #include "scene/element.h"
-#include "scene/toml_text.h"
+#include "scene/input_spec.h"
 #include "sound/sound_settings.h"
 #include "wind/wind_field.h"
 
@@ -45,7 +45,7 @@ struct SceneDesc {
 };
 
 // Bounds on what a scene may ask for (README: "Limits"; the nesting bound is in
-// scene/toml_text.h). More elements would exhaust memory.
+// params/toml_text.h). More elements would exhaust memory.
 inline constexpr size_t kMaxElements = 64;
 inline constexpr unsigned kMaxElementCost = 64;  // sum of ElementSpec::cost()
 

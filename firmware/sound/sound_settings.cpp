@@ -3,7 +3,7 @@
 #include <cctype>
 #include <cstdint>
 
-#include "scene/params.h"
+#include "params/params.h"
 
 namespace candela {
 

@@ -5,8 +5,8 @@
 #include "core/error.h"
 #include "core/file_read.h"
 #include "embedded_stories.h"
-#include "scene/params.h"
-#include "scene/toml_text.h"
+#include "params/params.h"
+#include "params/toml_text.h"
 
 namespace candela::story {
 

@@ -10,8 +10,8 @@
 #include "core/error.h"
 #include "core/fixed.h"
 #include "core/random.h"
-#include "elements/eigenflame/arp_driver.h"
-#include "elements/eigenflame/graph_walker.h"
+#include "flame_drivers/arp_driver.h"
+#include "flame_drivers/graph_walker.h"
 
 namespace candela::story {
 namespace {

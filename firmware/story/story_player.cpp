@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "elements/eigenflame/graph_walker.h"
+#include "flame_drivers/graph_walker.h"
 
 namespace candela::story {
 

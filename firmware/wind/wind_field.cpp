@@ -4,9 +4,9 @@
 
 #include "core/log.h"
 #include "embedded_noise_tables.h"
-#include "scene/element.h"
-#include "scene/params.h"
+#include "params/params.h"
 #include "wind/fixed_math.h"
+#include "wind/step_context.h"
 
 namespace candela {
 

@@ -13,8 +13,8 @@
 #include "gl/program.h"
 #include "gl/render_target.h"
 #include "gl/texture.h"
+#include "params/params.h"
 #include "scene/element.h"
-#include "scene/params.h"
 #include "scene/scene_file.h"
 #include "support/render_harness.h"
 

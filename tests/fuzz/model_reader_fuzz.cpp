@@ -9,9 +9,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "elements/eigenflame/arp_driver.h"
 #include "elements/eigenflame/flame_shape.h"
-#include "elements/eigenflame/graph_walker.h"
+#include "flame_drivers/arp_driver.h"
+#include "flame_drivers/graph_walker.h"
 #include "model/flame_model.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -11,7 +11,7 @@
 #include <string_view>
 
 #include "core/error.h"
-#include "scene/params.h"
+#include "params/params.h"
 #include "scene/scene_file.h"
 
 namespace candela {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "elements/eigenflame/weight_edits.h"
+#include "flame_drivers/weight_edits.h"
 
 namespace candela::studio {
 

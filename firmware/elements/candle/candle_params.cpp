@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "embedded_noise_tables.h"
-#include "scene/params.h"
+#include "params/params.h"
 
 namespace candela {
 namespace {

@@ -8,7 +8,7 @@
 #include "core/image.h"
 #include "core/random.h"
 #include "elements/candle/candles.h"
-#include "scene/params.h"
+#include "params/params.h"
 
 namespace candela {
 namespace {

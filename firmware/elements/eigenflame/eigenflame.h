@@ -57,8 +57,8 @@
 
 #include "core/fixed.h"
 #include "elements/eigenflame/eigen_renderer.h"
-#include "elements/eigenflame/graph_walker.h"
-#include "elements/eigenflame/weight_edits.h"
+#include "flame_drivers/graph_walker.h"
+#include "flame_drivers/weight_edits.h"
 #include "gl/math.h"
 #include "scene/element.h"
 #include "story/story_file.h"

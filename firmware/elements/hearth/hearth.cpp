@@ -10,7 +10,7 @@
 #include "core/random.h"
 #include "gl/program.h"
 #include "gl/texture.h"
-#include "scene/params.h"
+#include "params/params.h"
 
 namespace candela {
 namespace {

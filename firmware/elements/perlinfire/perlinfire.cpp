@@ -17,7 +17,7 @@
 #include "gl/program.h"
 #include "gl/render_target.h"
 #include "gl/texture.h"
-#include "scene/params.h"
+#include "params/params.h"
 #include "wind/lean.h"
 #include "wind/wind_field.h"
 

@@ -2,7 +2,7 @@
 
 #include "gl/program.h"
 #include "gl/texture.h"
-#include "scene/params.h"
+#include "params/params.h"
 
 namespace candela {
 namespace {

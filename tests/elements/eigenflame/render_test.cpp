@@ -11,7 +11,7 @@
 #include "display/display.h"
 #include "elements/eigenflame/eigen_renderer.h"
 #include "elements/eigenflame/eigenflame.h"
-#include "elements/eigenflame/graph_walker.h"
+#include "flame_drivers/graph_walker.h"
 #include "gl/gles.h"
 #include "gl/render_target.h"
 #include "model/flame_model.h"

@@ -1,6 +1,8 @@
 // What the scene says about the room's inputs: [[input]] tables, each a GPIO
 // sensor (button, presence, anemometer, blow) or a camera. Parsed and
 // validated with the scene, so `candela --check` reports their mistakes too.
+// Here in scene/, not input/: the scene names its inputs without including
+// the code that runs them (input/ reads these specs).
 #pragma once
 
 #include <cstdint>

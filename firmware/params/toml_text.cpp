@@ -1,4 +1,4 @@
-#include "scene/toml_text.h"
+#include "params/toml_text.h"
 
 #include <sstream>
 

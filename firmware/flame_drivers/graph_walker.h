@@ -29,7 +29,7 @@
 
 #include "core/fixed.h"
 #include "core/random.h"
-#include "elements/eigenflame/no_repeat_guard.h"
+#include "flame_drivers/no_repeat_guard.h"
 #include "model/flame_model.h"
 
 namespace candela {

@@ -1,4 +1,4 @@
-#include "elements/eigenflame/arp_driver.h"
+#include "flame_drivers/arp_driver.h"
 
 #include <algorithm>
 

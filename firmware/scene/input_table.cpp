@@ -1,9 +1,9 @@
-#include "input/input_config.h"
+#include "scene/input_table.h"
 
 #include <cmath>
 
 #include "core/error.h"
-#include "scene/params.h"
+#include "params/params.h"
 
 namespace candela {
 

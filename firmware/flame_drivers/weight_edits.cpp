@@ -1,4 +1,4 @@
-#include "elements/eigenflame/weight_edits.h"
+#include "flame_drivers/weight_edits.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "elements/eigenflame/no_repeat_guard.h"
+#include "flame_drivers/no_repeat_guard.h"
 
 #include <algorithm>
 

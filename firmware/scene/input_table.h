@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "input/input_spec.h"
+#include "scene/input_spec.h"
 
 namespace candela {
 

@@ -1,4 +1,4 @@
-#include "elements/eigenflame/graph_walker.h"
+#include "flame_drivers/graph_walker.h"
 
 #include <algorithm>
 

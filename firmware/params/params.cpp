@@ -1,4 +1,4 @@
-#include "scene/params.h"
+#include "params/params.h"
 
 #include <cmath>
 #include <sstream>

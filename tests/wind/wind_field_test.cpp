@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "input/input_hub.h"
-#include "scene/element.h"
+#include "wind/step_context.h"
 #include "wind/fixed_math.h"
 #include "wind/wind_field.h"
 

@@ -16,11 +16,11 @@
 #include <vector>
 
 #include "core/random.h"
-#include "elements/eigenflame/arp_driver.h"
 #include "elements/eigenflame/eigen_renderer.h"
 #include "elements/eigenflame/eigenflame.h"
-#include "elements/eigenflame/graph_walker.h"
-#include "elements/eigenflame/no_repeat_guard.h"
+#include "flame_drivers/arp_driver.h"
+#include "flame_drivers/graph_walker.h"
+#include "flame_drivers/no_repeat_guard.h"
 #include "model/flame_model.h"
 #include "scene/scene.h"
 #include "scene/scene_file.h"
