@@ -30,11 +30,14 @@ std::string_view name_at(std::size_t i);
   string(REPLACE ";" "|" files_arg "${E_FILES}")
   add_custom_command(
     OUTPUT ${out}
-    COMMAND ${CMAKE_COMMAND} -DOUT=${out} -DNS=${E_NAMESPACE} "-DFILES=${files_arg}"
+    COMMAND ${CMAKE_COMMAND} -DOUT=${out} -DNS=${E_NAMESPACE} -DTAG=${E_TARGET} "-DFILES=${files_arg}"
             -P ${CANDELA_EMBED_SCRIPT}
     DEPENDS ${E_FILES} ${CANDELA_EMBED_SCRIPT}
     COMMENT "Embedding ${E_TARGET}"
     VERBATIM)
+  # The generated file names the files (.incbin), so their bytes are what
+  # its object depends on.
+  set_source_files_properties(${out} PROPERTIES OBJECT_DEPENDS "${E_FILES}")
   add_library(${E_TARGET} STATIC ${out})
   target_include_directories(${E_TARGET} PUBLIC ${include_dir})
 endfunction()

@@ -290,7 +290,7 @@ std::string Kiosk::reload() {
       if (o_.schedule.present) {
         const ScheduleNow n = evaluate_schedule(o_.schedule, local_time(clock_.now_ms() / 1000));
         schedule_scene_ = n.scene;
-        if (n.scene >= 0) show = o_.schedule.scenes[static_cast<size_t>(n.scene)].scene;
+        show = scheduled_scene(o_.schedule, n, scene);
       } else {
         schedule_level_.store(1.0f, std::memory_order_relaxed);
         schedule_volume_.store(1.0f, std::memory_order_relaxed);
@@ -320,7 +320,7 @@ void Kiosk::apply_schedule() {
     }
     if (!s.scenes.empty() && n.scene != schedule_scene_) {
       schedule_scene_ = n.scene;
-      show = n.scene >= 0 ? s.scenes[static_cast<size_t>(n.scene)].scene : config_scene_;
+      show = scheduled_scene(s, n, config_scene_);
     }
   }
   if (!show.empty()) {

@@ -223,6 +223,11 @@ ScheduleNow evaluate_schedule(const Schedule& s, const LocalTime& t) {
   return n;
 }
 
+const std::string& scheduled_scene(const Schedule& s, const ScheduleNow& now,
+                                   const std::string& configured) {
+  return now.scene >= 0 ? s.scenes[static_cast<size_t>(now.scene)].scene : configured;
+}
+
 std::string describe_schedule(const Schedule& s, const LocalTime& t, const std::string& scene) {
   char b[256];
   if (!s.present) return "no [schedule] in the config: the screen follows commands only";

@@ -73,6 +73,11 @@ struct ScheduleNow {
   int64_t next_in_s = 0;  // seconds until it
 };
 ScheduleNow evaluate_schedule(const Schedule& s, const LocalTime& t);
+// The scene to show now: the schedule's range's where one names a scene,
+// else `configured` (the config's or --scene's). Used at start-up, on reload
+// and as the schedule changes, so all three agree.
+const std::string& scheduled_scene(const Schedule& s, const ScheduleNow& now,
+                                   const std::string& configured);
 
 // One line for the `schedule` command: "screen on (fading in), level 1.00,
 // scene eigen-candle (17:00-21:00); next: off at Tue 23:30 (in 2h 5m)".

@@ -13,6 +13,7 @@ build it is empty and the command is the program itself.
     CANDELA = program(os.path.join(BUILD, "firmware", "candela"))
     subprocess.run([*CANDELA, "--check"], ...)
 """
+import mmap
 import os
 import shlex
 
@@ -22,3 +23,11 @@ EMULATOR = shlex.split(os.environ.get("CANDELA_EMULATOR", ""))
 def program(path):
     """The command (a list) that runs the build's program at path here."""
     return EMULATOR + [path]
+
+
+def sanitized(path):
+    """Whether the program at path was built with AddressSanitizer
+    (CANDELA_SANITIZE): its memory figures are ASan's, not the program's
+    (freed memory stays resident in its quarantine)."""
+    with open(path, "rb") as f, mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) as m:
+        return m.find(b"__asan_init") >= 0
