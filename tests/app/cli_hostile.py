@@ -8,7 +8,9 @@ command-line numbers, and signals while it writes video.
 Each case checks the exit status and the message a user would read. Every
 wait polls observable state (a file, a process's exit) against a deadline;
 nothing sleeps to synchronise."""
+import atexit
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -23,6 +25,7 @@ from programs import EMULATOR, program  # noqa: E402
 CASE, BUILD = sys.argv[1], os.path.abspath(sys.argv[2])
 CANDELA = program(os.path.join(BUILD, "firmware", "candela"))
 WORK = tempfile.mkdtemp(prefix="candela-hostile-")
+atexit.register(shutil.rmtree, WORK, True)  # nothing left in /tmp, pass or fail
 SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 ELEMENT = '[[element]]\nkind = "test_pattern"\n'
 

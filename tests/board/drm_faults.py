@@ -19,9 +19,11 @@ process that was master become it again). What is on screen is read from the
 kernel (the CRTC's framebuffer id through DRM_IOCTL_MODE_GETCRTC on a file
 opened while candela is master, so this reader never becomes master itself).
 Every wait polls against a deadline."""
+import atexit
 import ctypes
 import fcntl
 import os
+import shutil
 import signal
 import sys
 import tempfile
@@ -35,6 +37,7 @@ from drm_query import CandelaOnDrm, crtc_state, first_crtc  # noqa: E402
 CANDELA = sys.argv[1]
 CARD = "/dev/dri/card0"
 WORK = tempfile.mkdtemp(prefix="candela-drm-faults-")
+atexit.register(shutil.rmtree, WORK, True)  # nothing left in /tmp, pass or fail
 
 DRM_IOCTL_SET_MASTER = 0x641E
 DRM_IOCTL_DROP_MASTER = 0x641F

@@ -23,8 +23,10 @@ a driver's hot-plug sends (with HOTPLUG=1) on real hardware.
 
 What is on screen is read from the kernel (the CRTC's framebuffer id). Every
 wait polls against a deadline."""
+import atexit
 import json
 import os
+import shutil
 import signal
 import socket
 import sys
@@ -39,6 +41,7 @@ CARD = "/dev/dri/card0"
 STATUS = "/sys/class/drm/card0-Virtual-1/status"
 UEVENT = "/sys/class/drm/card0/uevent"
 WORK = tempfile.mkdtemp(prefix="candela-drm-hotplug-")
+atexit.register(shutil.rmtree, WORK, True)  # nothing left in /tmp, pass or fail
 
 def ask(path, line):
     """One control-socket command, its one-line reply."""

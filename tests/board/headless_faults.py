@@ -15,6 +15,7 @@ host; the DRM ones are drm_faults.py on the virtual board):
 Every wait polls observable state (the control socket's `state`, the output
 file's size, a process's exit) against a deadline; the only fixed waits are
 the lengths of the faults themselves."""
+import atexit
 import json
 import math
 import os
@@ -35,6 +36,7 @@ CASE, BUILD = sys.argv[1], os.path.abspath(sys.argv[2])
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CANDELA = program(os.path.join(BUILD, "firmware", "candela"))
 WORK = tempfile.mkdtemp(prefix="candela-faults-")
+atexit.register(shutil.rmtree, WORK, True)  # nothing left in /tmp, pass or fail
 
 
 # --- SIGSTOP / SIGCONT -------------------------------------------------------------

@@ -8,10 +8,12 @@ record_no_camera cases also run on the host.
 
 Every wait polls observable state (the control socket's `state`, a process's
 exit, a manifest) against a deadline; nothing sleeps to synchronise."""
+import atexit
 import glob
 import json
 import os
 import re
+import shutil
 import socket
 import struct
 import subprocess
@@ -30,6 +32,7 @@ CANDELA = program(os.path.join(BUILD, "firmware", "candela"))
 RECORD = program(os.path.join(BUILD, "tools", "record", "candela-record"))
 TOOL = program(os.path.join(BUILD, "tools", "candela-tool", "candela-tool"))
 WORK = tempfile.mkdtemp(prefix="candela-vb-")
+atexit.register(shutil.rmtree, WORK, True)  # nothing left in /tmp, pass or fail
 
 
 class Candela:

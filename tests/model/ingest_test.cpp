@@ -11,13 +11,13 @@
 #include "core/image.h"
 #include "dataset.h"
 #include "model_test_support.h"
+#include "support/temp_dir.h"
 
 namespace ct = candela::tools;
 
 TEST(Ingest, VideoAndPngFoldersAgree) {
-  const std::string dir =
-      std::filesystem::temp_directory_path() / ("candela_ingest_test_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
+  const candela::test::TempDir tmp("candela_ingest_test_");
+  const std::string& dir = tmp.path();
   const std::string video = dir + "/schodl.mkv";
   // A lossless video of the first 20 frames, made by the ffmpeg program.
   const std::string cmd = "ffmpeg -loglevel error -y -framerate 30 -i " +
@@ -94,8 +94,8 @@ TEST(Ingest, DatasetRoundTripsAndLabelsLand) {
   o.height = 48;
   o.labels.push_back(ct::parse_label("candle_schodl_singan:2-5:calm", "test"));
   ct::Dataset d = ct::ingest({ct::read_source(ct::test::clip_dir("candle_schodl_singan"), 10)}, o);
-  const std::string dir =
-      std::filesystem::temp_directory_path() / ("candela_dataset_rt_" + std::to_string(getpid()));
+  const candela::test::TempDir tmp("candela_dataset_rt_");
+  const std::string dir = tmp / "dataset";
   ct::save_dataset(d, dir);
   ct::Dataset back = ct::load_dataset(dir);
   EXPECT_EQ(back.pixels, d.pixels);

@@ -14,6 +14,7 @@
 
 #include "model/flame_model.h"
 #include "model/model_writer.h"
+#include "support/temp_dir.h"
 
 namespace cm = candela::model;
 using Kind = cm::ModelError::Kind;
@@ -99,12 +100,11 @@ cm::ModelWriter edited(cm::ModelWriter mw, const std::function<void(nlohmann::js
 }
 
 // ctest runs each test of this file as its own process, in parallel: every
-// process gets its own files (a shared name let one test truncate a file
-// another was reading).
+// process gets its own folder (a shared name let one test truncate a file
+// another was reading), removed when the process ends.
 std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() /
-          ("candela_model_test_" + std::to_string(getpid()) + "_" + name))
-      .string();
+  static const candela::test::TempDir dir("candela_model_test_");
+  return dir / name;
 }
 
 void write_bytes(const std::string& path, const std::vector<uint8_t>& b) {

@@ -19,6 +19,7 @@
 
 #include "model_build.h"
 #include "model_test_support.h"
+#include "support/temp_dir.h"
 
 namespace ct = candela::tools;
 
@@ -32,9 +33,8 @@ TEST(Pca, MatchesNumpySvdOnARealClip) {
   ct::PcaResult r = ct::pca_snapshot(d, o);
   ASSERT_EQ(r.components(), k);
 
-  const std::string dir =
-      std::filesystem::temp_directory_path() / ("candela_pca_test_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
+  const candela::test::TempDir tmp("candela_pca_test_");
+  const std::string& dir = tmp.path();
   {
     std::ofstream f(dir + "/frames.u8", std::ios::binary);
     f.write(reinterpret_cast<const char*>(d.pixels.data()),

@@ -40,11 +40,28 @@ json to_json(const cm::Features& f) {
   return j;
 }
 
-void add_common(CLI::App& app, cm::LoadLimits& limits, bool& as_json) {
-  app.add_option("--max-frames", limits.max_frames,
+// What every subcommand takes: how many frames to read at most, and --json.
+struct Common {
+  cm::LoadLimits limits;
+  bool as_json = false;
+};
+void add_common(CLI::App& app, Common& c) {
+  app.add_option("--max-frames", c.limits.max_frames,
                  "read at most this many frames (first by name; the scripts read 900)")
       ->check(CLI::Range(2, 100000));
-  app.add_flag("--json", as_json, "print one JSON object");
+  app.add_flag("--json", c.as_json, "print one JSON object");
+}
+
+// The clip a subcommand measures: a folder of PNG frames and its frame rate.
+struct Clip {
+  std::string dir;
+  double fps = 0;
+};
+void add_clip(CLI::App& app, Clip& clip, const char* what = "folder of PNG frames") {
+  app.add_option("DIR", clip.dir, what)->required();
+  app.add_option("--fps", clip.fps, "frame rate of the clip")
+      ->required()
+      ->check(CLI::PositiveNumber);
 }
 
 int parse(CLI::App& app, int argc, char** argv) {
@@ -59,13 +76,12 @@ int parse(CLI::App& app, int argc, char** argv) {
 int run_features(int argc, char** argv) {
   CLI::App app{"Scale-free appearance and motion features of one flame clip (flame_features.py)",
                "candela-tool measure features"};
-  std::string dir;
-  double fps = 0;
-  cm::LoadLimits limits;
-  bool as_json = false;
-  app.add_option("DIR", dir, "folder of PNG frames")->required();
-  app.add_option("--fps", fps, "frame rate of the clip")->required()->check(CLI::PositiveNumber);
-  add_common(app, limits, as_json);
+  Clip clip;
+  Common common;
+  add_clip(app, clip);
+  add_common(app, common);
+  const auto& [dir, fps] = clip;
+  const auto& [limits, as_json] = common;
   if (int rc = parse(app, argc, argv); rc >= 0) return rc;
   const cm::Features f = cm::features(cm::load_frames(dir, limits), fps, dir, limits);
   if (as_json) {
@@ -81,13 +97,12 @@ int run_features(int argc, char** argv) {
 int run_stats(int argc, char** argv) {
   CLI::App app{"Brightness I, height H, sway X, width W: mean, std and spectral slope (realism.py)",
                "candela-tool measure stats"};
-  std::string dir;
-  double fps = 0;
-  cm::LoadLimits limits;
-  bool as_json = false;
-  app.add_option("DIR", dir, "folder of PNG frames")->required();
-  app.add_option("--fps", fps, "frame rate of the clip")->required()->check(CLI::PositiveNumber);
-  add_common(app, limits, as_json);
+  Clip clip;
+  Common common;
+  add_clip(app, clip);
+  add_common(app, common);
+  const auto& [dir, fps] = clip;
+  const auto& [limits, as_json] = common;
   if (int rc = parse(app, argc, argv); rc >= 0) return rc;
   const cm::Frames raw = cm::load_frames(dir, limits);
   const cm::Stats s = cm::stats(cm::series(raw), fps);
@@ -114,13 +129,13 @@ int run_compare(int argc, char** argv) {
       "candela-tool measure compare"};
   std::string da, db;
   double fa = 0, fb = 0;
-  cm::LoadLimits limits;
-  bool as_json = false;
+  Common common;
   app.add_option("DIR_A", da, "folder of PNG frames")->required();
   app.add_option("FPS_A", fa, "its frame rate")->required()->check(CLI::PositiveNumber);
   app.add_option("DIR_B", db, "folder of PNG frames")->required();
   app.add_option("FPS_B", fb, "its frame rate")->required()->check(CLI::PositiveNumber);
-  add_common(app, limits, as_json);
+  add_common(app, common);
+  const auto& [limits, as_json] = common;
   if (int rc = parse(app, argc, argv); rc >= 0) return rc;
   const cm::Series sa = cm::series(cm::load_frames(da, limits));
   const cm::Series sb = cm::series(cm::load_frames(db, limits));
@@ -144,13 +159,12 @@ int run_repeats(int argc, char** argv) {
       "Longest stretch of frames that nearly repeats an earlier one, in seconds "
       "(realism.py repeats)",
       "candela-tool measure repeats"};
-  std::string dir;
-  double fps = 0;
-  cm::LoadLimits limits;
-  bool as_json = false;
-  app.add_option("DIR", dir, "folder of PNG frames")->required();
-  app.add_option("--fps", fps, "frame rate of the clip")->required()->check(CLI::PositiveNumber);
-  add_common(app, limits, as_json);
+  Clip clip;
+  Common common;
+  add_clip(app, clip);
+  add_common(app, common);
+  const auto& [dir, fps] = clip;
+  const auto& [limits, as_json] = common;
   if (int rc = parse(app, argc, argv); rc >= 0) return rc;
   const double r = cm::longest_repeat_s(cm::load_frames(dir, limits), fps);
   if (as_json)
@@ -181,12 +195,12 @@ int run_judge(int argc, char** argv) {
       "the real-vs-real spread. Exit 0 when everything asked for is inside, 1 when not.\n"
       "Also: measure features|stats|compare|repeats ... (measure SUBCOMMAND --help)",
       "candela-tool measure"};
-  std::string dir, against, flames = default_flames_dir(), only;
-  double fps = 0, spectra_margin = 0;
-  cm::LoadLimits limits;
-  bool as_json = false, no_spectra = false;
-  app.add_option("DIR", dir, "folder of PNG frames to judge")->required();
-  app.add_option("--fps", fps, "its frame rate")->required()->check(CLI::PositiveNumber);
+  std::string against, flames = default_flames_dir(), only;
+  double spectra_margin = 0;
+  bool no_spectra = false;
+  Clip judged;
+  Common common;
+  add_clip(app, judged, "folder of PNG frames to judge");
   app.add_option("--against", against,
                  "the real clips: a file of lines \"DIR FPS\", or a kind: candle (the four "
                  "shared candle clips) or fire (the three real-speed fire clips)")
@@ -213,7 +227,9 @@ int run_judge(int argc, char** argv) {
                  "as inside")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  add_common(app, limits, as_json);
+  add_common(app, common);
+  const auto& [dir, fps] = judged;
+  const auto& [limits, as_json] = common;
   if (int rc = parse(app, argc, argv); rc >= 0) return rc;
   const std::vector<std::string> names = split_list(only);
   for (const auto& n : names)

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <mutex>
+#include <span>
 
 #include "core/error.h"
 #include "embedded_noise_tables.h"
@@ -105,62 +106,79 @@ CandleParams::CandleParams() {
   }
 }
 
+namespace {
+// One number of a parameter table: its key, where it goes, its range.
+struct Field {
+  const char* key;
+  Fixed CandleParams::*member;
+  double lo, hi;
+};
+// A table of the [[element]] (calm = { ... }), its numbers in the order they
+// are read, and the noise channels it tunes (first..last; -1: none).
+struct Table {
+  const char* name;
+  std::span<const Field> fields;
+  int first_channel = -1, last_channel = -1;
+};
+using P = CandleParams;
+constexpr Field kCalm[] = {
+    {"sway_left", &P::sway_left, -90, 0},
+    {"sway_right", &P::sway_right, 0, 90},
+    {"tilt_front", &P::tilt_front, -90, 0},
+    {"tilt_rear", &P::tilt_rear, 0, 90},
+    {"stretch_low", &P::calm_stretch_low, 0.01, 4},
+    {"stretch_high", &P::calm_stretch_high, 0.01, 4},
+    {"width_thin", &P::calm_width_thin, 0.01, 4},
+    {"width_thick", &P::calm_width_thick, 0.01, 4},
+    {"flicker", &P::flicker, 0, 0.5},
+    {"turbulence", &P::calm_turbulence, 0, 1},
+};
+constexpr Field kBreeze[] = {
+    {"lean", &P::lean, 0, 89},
+    {"tilt", &P::breeze_tilt, 0, 89},
+    {"stretch_low", &P::breeze_stretch_low, 0.01, 4},
+    {"stretch_high", &P::breeze_stretch_high, 0.01, 4},
+    {"width_thin", &P::breeze_width_thin, 0.01, 4},
+    {"width_thick", &P::breeze_width_thick, 0.01, 4},
+    {"full_speed", &P::full_speed, 0.05, 30},
+    {"flutter", &P::flutter, 0, 1},
+    {"turbulence", &P::turbulence, 0, 0.5},
+    {"turbulence_lag", &P::turbulence_lag, 0, 2},
+    {"bend", &P::bend, 0, 0.9},
+};
+constexpr Field kWick[] = {
+    {"stick_angle", &P::stick_angle, 1, 89},
+    {"angle", &P::wick_angle, -45, 45},
+    {"stick_depth", &P::stick_depth, 0, 0.5},
+};
+constexpr Field kPendulum[] = {
+    {"frequency", &P::pendulum_hz, 0.1, 10},
+    {"damping", &P::pendulum_damping, 0.02, 2},
+};
+constexpr Field kExtinguish[] = {
+    {"speed", &P::extinguish_speed, 0.1, 100},
+    {"relight_seconds", &P::relight_seconds, 0.1, 3600},
+    {"smoke_seconds", &P::smoke_seconds, 0, 30},
+    {"regrow_seconds", &P::regrow_seconds, 0.05, 30},
+};
+const Table kTables[] = {
+    {"calm", kCalm, kCalmSway, kCalmFlicker},
+    {"breeze", kBreeze, kBreezeLean, kTurbulence},
+    {"wick", kWick},
+    {"pendulum", kPendulum},
+    {"extinguish", kExtinguish},
+};
+}  // namespace
+
 CandleParams parse_candle_params(ParamReader& r, const CandleParams& base) {
   CandleParams p = base;
-  auto num = [](ParamReader& t, const char* key, Fixed def, double lo, double hi) {
-    return t.fixed(key, def.to_double(), lo, hi);
-  };
-  {
-    ParamReader c = r.table("calm");
-    p.sway_left = num(c, "sway_left", p.sway_left, -90, 0);
-    p.sway_right = num(c, "sway_right", p.sway_right, 0, 90);
-    p.tilt_front = num(c, "tilt_front", p.tilt_front, -90, 0);
-    p.tilt_rear = num(c, "tilt_rear", p.tilt_rear, 0, 90);
-    p.calm_stretch_low = num(c, "stretch_low", p.calm_stretch_low, 0.01, 4);
-    p.calm_stretch_high = num(c, "stretch_high", p.calm_stretch_high, 0.01, 4);
-    p.calm_width_thin = num(c, "width_thin", p.calm_width_thin, 0.01, 4);
-    p.calm_width_thick = num(c, "width_thick", p.calm_width_thick, 0.01, 4);
-    p.flicker = num(c, "flicker", p.flicker, 0, 0.5);
-    p.calm_turbulence = num(c, "turbulence", p.calm_turbulence, 0, 1);
-    for (int ch = kCalmSway; ch <= kCalmFlicker; ++ch) read_noise(c, ch, p.noise[ch]);
-    c.finish();
-  }
-  {
-    ParamReader b = r.table("breeze");
-    p.lean = num(b, "lean", p.lean, 0, 89);
-    p.breeze_tilt = num(b, "tilt", p.breeze_tilt, 0, 89);
-    p.breeze_stretch_low = num(b, "stretch_low", p.breeze_stretch_low, 0.01, 4);
-    p.breeze_stretch_high = num(b, "stretch_high", p.breeze_stretch_high, 0.01, 4);
-    p.breeze_width_thin = num(b, "width_thin", p.breeze_width_thin, 0.01, 4);
-    p.breeze_width_thick = num(b, "width_thick", p.breeze_width_thick, 0.01, 4);
-    p.full_speed = num(b, "full_speed", p.full_speed, 0.05, 30);
-    p.flutter = num(b, "flutter", p.flutter, 0, 1);
-    p.turbulence = num(b, "turbulence", p.turbulence, 0, 0.5);
-    p.turbulence_lag = num(b, "turbulence_lag", p.turbulence_lag, 0, 2);
-    p.bend = num(b, "bend", p.bend, 0, 0.9);
-    for (int ch = kBreezeLean; ch <= kTurbulence; ++ch) read_noise(b, ch, p.noise[ch]);
-    b.finish();
-  }
-  {
-    ParamReader w = r.table("wick");
-    p.stick_angle = num(w, "stick_angle", p.stick_angle, 1, 89);
-    p.wick_angle = num(w, "angle", p.wick_angle, -45, 45);
-    p.stick_depth = num(w, "stick_depth", p.stick_depth, 0, 0.5);
-    w.finish();
-  }
-  {
-    ParamReader q = r.table("pendulum");
-    p.pendulum_hz = num(q, "frequency", p.pendulum_hz, 0.1, 10);
-    p.pendulum_damping = num(q, "damping", p.pendulum_damping, 0.02, 2);
-    q.finish();
-  }
-  {
-    ParamReader e = r.table("extinguish");
-    p.extinguish_speed = num(e, "speed", p.extinguish_speed, 0.1, 100);
-    p.relight_seconds = num(e, "relight_seconds", p.relight_seconds, 0.1, 3600);
-    p.smoke_seconds = num(e, "smoke_seconds", p.smoke_seconds, 0, 30);
-    p.regrow_seconds = num(e, "regrow_seconds", p.regrow_seconds, 0.05, 30);
-    e.finish();
+  for (const Table& table : kTables) {
+    ParamReader t = r.table(table.name);
+    for (const Field& f : table.fields)
+      p.*f.member = t.fixed(f.key, (p.*f.member).to_double(), f.lo, f.hi);
+    for (int ch = table.first_channel; ch >= 0 && ch <= table.last_channel; ++ch)
+      read_noise(t, ch, p.noise[ch]);
+    t.finish();
   }
   return p;
 }
