@@ -12,7 +12,7 @@
 # the C++ tests that start candela or candela-record themselves put
 # $CANDELA_EMULATOR in front (tests/support/programs.py, program_command.h),
 # which ctest sets for every test of a cross build.
-#   board/arm64/test.sh [--all | --quick] BUILD_DIR
+#   board/arm64/test.sh [--all | --quick | --state-only] BUILD_DIR
 # Without --all, the tests that take long under emulation are left out
 # (`slow` below, each with its reason; --all runs them too), so the CI step
 # stays within its few minutes. What they run is covered by the amd64 builds
@@ -44,7 +44,11 @@ if [ "${1:-}" = --all ]; then slow='^$'; shift; fi
 # equality: what tests/run-all.sh runs when CI's earlier stages took long.
 labels=unit,render,candle,eigenflame,model
 if [ "${1:-}" = --quick ]; then labels=unit; shift; fi
-build=${1:?usage: board/arm64/test.sh [--all | --quick] BUILD_DIR}
+# --state-only: the state equality alone, what tests/run-all.sh runs when
+# CI's earlier stages took longer still (the unit tests ran natively above).
+state_only=false
+if [ "${1:-}" = --state-only ]; then state_only=true; shift; fi
+build=${1:?usage: board/arm64/test.sh [--all | --quick | --state-only] BUILD_DIR}
 jobs=$(nproc)
 # Left out even with --all: they assume native speed, and fail under
 # emulation for that reason alone (each runs in every amd64 build).
@@ -60,7 +64,8 @@ not_here+='|^mqtt_room$'
 emulator=$(sed -n 's/^CMAKE_CROSSCOMPILING_EMULATOR:[A-Z]*=//p' "$build/CMakeCache.txt")
 [ -n "$emulator" ] || { echo "arm64 test: $build is not a cross build with an emulator" >&2; exit 1; }
 
-# The tests of those labels.
+# The tests of those labels (not with --state-only).
+if ! $state_only; then
 ctest --test-dir "$build" --show-only=json-v1 >"$build/arm64-tests.json"
 picked=$(/usr/bin/python3 - "$build/arm64-tests.json" "$not_here" "$slow" "$labels" <<'PY'
 import json, re, sys
@@ -87,6 +92,7 @@ PY
 )
 [ -n "$picked" ] || { echo "arm64 test: no unit or render test found in $build" >&2; exit 1; }
 ctest --test-dir "$build" --output-on-failure -j "$jobs" -I "0,0,0,$picked"
+fi
 if ctest --test-dir "$build" -N -L arm64 | grep -q 'Total Tests: [1-9]'; then
   ctest --test-dir "$build" --output-on-failure -L arm64
 else
