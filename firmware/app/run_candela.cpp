@@ -19,12 +19,15 @@
 namespace candela {
 namespace {
 
+// The scene's [sound], unless --mute.
+bool sound_on(const Options& opt, const SceneDesc& desc) { return desc.sound.enabled && !opt.mute; }
+
 // Headless writing frames: the sound goes beside them (muxed into a video);
 // a screen, or headless --realtime without --out (a board heard, not seen):
 // ALSA. Headless otherwise: no sound.
 std::unique_ptr<SoundOutput> open_sound(const Options& opt, const SceneDesc& desc,
                                         const Display& display) {
-  if (!desc.sound.enabled || opt.mute) return nullptr;
+  if (!sound_on(opt, desc)) return nullptr;
   const uint64_t seed =
       desc.sound.seed ? desc.sound.seed : (opt.seed ? opt.seed : desc.seed) ^ 0x736f756e64ULL;
   if (display.name() != "headless" || (opt.realtime && opt.display.out_path.empty()))
@@ -104,7 +107,7 @@ int run_candela(Options& opt, StartScene start, const WallClock& wall) {
   if (opt.display.refresh_hz == 0) opt.display.refresh_hz = desc.refresh_hz;
   // Before any thread starts (it unsets the variables it reads).
   SdNotify notify = SdNotify::from_environment(desc.file);
-  if (desc.sound.enabled && !opt.mute && !opt.display.out_path.empty())
+  if (sound_on(opt, desc) && !opt.display.out_path.empty())
     opt.display.sound_path = sound_path_for(opt.display.out_path);
   try {
     auto display = open_display(opt.display);

@@ -64,6 +64,17 @@ void add_clip(CLI::App& app, Clip& clip, const char* what = "folder of PNG frame
       ->check(CLI::PositiveNumber);
 }
 
+// The options of a subcommand that measures one clip, added to `app` (kept
+// where they are: CLI11 writes to the members it was given).
+struct OneClip {
+  Clip clip;
+  Common common;
+  explicit OneClip(CLI::App& app) {
+    add_clip(app, clip);
+    add_common(app, common);
+  }
+};
+
 int parse(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
@@ -76,12 +87,9 @@ int parse(CLI::App& app, int argc, char** argv) {
 int run_features(int argc, char** argv) {
   CLI::App app{"Scale-free appearance and motion features of one flame clip (flame_features.py)",
                "candela-tool measure features"};
-  Clip clip;
-  Common common;
-  add_clip(app, clip);
-  add_common(app, common);
-  const auto& [dir, fps] = clip;
-  const auto& [limits, as_json] = common;
+  OneClip options(app);
+  const auto& [dir, fps] = options.clip;
+  const auto& [limits, as_json] = options.common;
   if (int rc = parse(app, argc, argv); rc >= 0) return rc;
   const cm::Features f = cm::features(cm::load_frames(dir, limits), fps, dir, limits);
   if (as_json) {
@@ -97,12 +105,9 @@ int run_features(int argc, char** argv) {
 int run_stats(int argc, char** argv) {
   CLI::App app{"Brightness I, height H, sway X, width W: mean, std and spectral slope (realism.py)",
                "candela-tool measure stats"};
-  Clip clip;
-  Common common;
-  add_clip(app, clip);
-  add_common(app, common);
-  const auto& [dir, fps] = clip;
-  const auto& [limits, as_json] = common;
+  OneClip options(app);
+  const auto& [dir, fps] = options.clip;
+  const auto& [limits, as_json] = options.common;
   if (int rc = parse(app, argc, argv); rc >= 0) return rc;
   const cm::Frames raw = cm::load_frames(dir, limits);
   const cm::Stats s = cm::stats(cm::series(raw), fps);
@@ -159,12 +164,9 @@ int run_repeats(int argc, char** argv) {
       "Longest stretch of frames that nearly repeats an earlier one, in seconds "
       "(realism.py repeats)",
       "candela-tool measure repeats"};
-  Clip clip;
-  Common common;
-  add_clip(app, clip);
-  add_common(app, common);
-  const auto& [dir, fps] = clip;
-  const auto& [limits, as_json] = common;
+  OneClip options(app);
+  const auto& [dir, fps] = options.clip;
+  const auto& [limits, as_json] = options.common;
   if (int rc = parse(app, argc, argv); rc >= 0) return rc;
   const double r = cm::longest_repeat_s(cm::load_frames(dir, limits), fps);
   if (as_json)
