@@ -84,9 +84,10 @@ void main() {
     float above = clamp(facing * 0.7 + n.y * 0.5, 0.0, 1.0);
     float below = smoothstep(-0.05, -0.55, n.y);
     float char_amount = max(smoothstep(0.3, 0.65, above + edge), smoothstep(0.3, 0.8, below + edge));
-    // Alligator char: blocks about as long as they are wide (a few cm), not
+    // Alligator char: blocks about as long as they are wide (2-3 cm: larger
+    // ones read as a tortoise shell), not
     // long strips along the log.
-    vec2 cell = char_cells(vec2(q.x * 1.2, q.y * 5.0));
+    vec2 cell = char_cells(vec2(q.x * 2.0, q.y * 8.0));
     // The blocks: dull black with a faint sheen, darker toward their cracks,
     // each rounded (lighter in the middle) so the char has relief.
     float dome = smoothstep(0.0, 0.35, cell.x);

@@ -25,6 +25,17 @@ struct LogDesc {
   float radius = 0.05f;
 };
 
+// The firebox the fire burns in: a back wall, two sides splayed towards the
+// opening and a floor, all old firebrick, lit by the fire. width 0: none.
+struct FireboxDesc {
+  float width = 0;           // the opening, at the front of the bed (m)
+  float height = 0.8f;       // the walls' height (m)
+  float depth = 0.55f;       // from the opening to the back wall (m)
+  float back_width = 0.62f;  // the back wall's width, of the opening's
+  Vec3 brick{0.45f, 0.22f, 0.14f};
+  float soot = 1.0f;  // how black the back wall is above the fire (0: clean brick)
+};
+
 struct HearthSettings {
   float width = 0.9f, depth = 0.4f;  // the ember bed, metres
   std::vector<LogDesc> logs;
@@ -33,6 +44,7 @@ struct HearthSettings {
   float light_strength = 1.0f;
   Vec3 light_at{0, 0.25f, 0};  // where the firelight comes from, relative to position
   float embers = 1.0f;         // ember glow strength
+  FireboxDesc firebox;
 };
 
 // A pile that reads as a fire's logs: two back logs and a front log lying
@@ -105,6 +117,32 @@ std::vector<float> log_mesh() {
   return v;
 }
 
+// The firebox's surfaces as triangles, relative to the hearth's position:
+// per vertex its position, its coordinates on the surface in metres (the
+// sides continue the back wall's, so the courses of bricks run round the
+// corners), its normal (into the box) and which surface (0 back, 1 side, 2 floor).
+std::vector<float> firebox_mesh(const FireboxDesc& b, float bed_depth) {
+  std::vector<float> v;
+  const float zf = bed_depth * 0.5f + 0.06f, zb = zf - b.depth;
+  const float fw = b.width * 0.5f, bw = fw * b.back_width, h = b.height;
+  const auto quad = [&](const std::array<Vec3, 4>& p, const std::array<std::array<float, 2>, 4>& uv,
+                        Vec3 n, float surface) {
+    for (int i : {0, 1, 2, 0, 2, 3})
+      v.insert(v.end(), {p[i].x, p[i].y, p[i].z, uv[i][0], uv[i][1], n.x, n.y, n.z, surface});
+  };
+  quad({Vec3{-bw, 0, zb}, Vec3{bw, 0, zb}, Vec3{bw, h, zb}, Vec3{-bw, h, zb}},
+       {{{-bw, 0}, {bw, 0}, {bw, h}, {-bw, h}}}, Vec3{0, 0, 1}, 0);
+  const float side = std::hypot(fw - bw, zf - zb);
+  const float nx = (zf - zb) / side, nz = (fw - bw) / side;
+  quad({Vec3{-fw, 0, zf}, Vec3{-bw, 0, zb}, Vec3{-bw, h, zb}, Vec3{-fw, h, zf}},
+       {{{-bw - side, 0}, {-bw, 0}, {-bw, h}, {-bw - side, h}}}, Vec3{nx, 0, nz}, 1);
+  quad({Vec3{bw, 0, zb}, Vec3{fw, 0, zf}, Vec3{fw, h, zf}, Vec3{bw, h, zb}},
+       {{{bw, 0}, {bw + side, 0}, {bw + side, h}, {bw, h}}}, Vec3{-nx, 0, nz}, 1);
+  quad({Vec3{-bw, 0, zb}, Vec3{-fw, 0, zf}, Vec3{fw, 0, zf}, Vec3{bw, 0, zb}},
+       {{{-bw, zb}, {-fw, zf}, {fw, zf}, {bw, zb}}}, Vec3{0, 1, 0}, 2);
+  return v;
+}
+
 class Hearth final : public Element {
  public:
   Hearth(const HearthSettings& s, Vec3 position, uint64_t seed)
@@ -113,6 +151,7 @@ class Hearth final : public Element {
     logs_prog_ = Program::from_library("hearth_log.vert", "hearth_log_shade.frag");
     bed_cache_prog_ = Program::from_library("floor_quad.vert", "hearth_bed.frag");
     bed_prog_ = Program::from_library("floor_quad.vert", "hearth_bed_shade.frag");
+    if (s_.firebox.width > 0) make_firebox();
     const auto u = [&](const Program& p, const char* n) { return p.uniform(n); };
     ulc_ = {u(logs_cache_prog_, "u_view_projection"), u(logs_cache_prog_, "u_light_pos"),
             u(logs_cache_prog_, "u_bark")};
@@ -174,10 +213,13 @@ class Hearth final : public Element {
   void update(const StepContext& step) override {
     time_ = step.time;
     flicker_ = light_.at(step.time);
+    // The fire's right half flickers on its own: the same signal, 1.7 s away.
+    if (firebox_vertices_ > 0) right_flicker_ = light_.at(step.time + Fixed::from_ratio(17, 10));
   }
   void hash_state(StateHash& hash) const override {
     hash.add(time_);
     hash.add(flicker_);
+    if (firebox_vertices_ > 0) hash.add(right_flicker_);
   }
 
   // The embers and logs are the fire's body: its roar follows the
@@ -205,8 +247,9 @@ class Hearth final : public Element {
     if (pass != DrawPass::kBody) return;
     const float t = static_cast<float>(time_.to_double());
     const Vec3 lc = s_.light * (s_.light_strength * flicker_.to_float());
-    // The bed first, flat on the floor; then the logs over it, depth-tested
-    // against each other.
+    // The firebox behind everything, writing depth; the bed flat on its
+    // floor; then the logs over it, depth-tested against each other.
+    draw_firebox(f);
     if (s_.embers > 0) {
       bed_prog_.use();
       set_bed_quad(f, ub_[0], ub_[1], ub_[2]);
@@ -276,6 +319,24 @@ class Hearth final : public Element {
     glClearColor(0, 0, 0, 0);
     glDepthMask(GL_TRUE);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (firebox_vertices_ > 0) {
+      // The firebox shares the logs' cache: the logs, drawn after it, hide it where they stand.
+      firebox_cache_prog_.use();
+      glUniformMatrix4fv(ufc_[0], 1, GL_FALSE, f.view_projection.m);
+      const Vec3 lp = position_ + s_.light_at;
+      glUniform3f(ufc_[1], lp.x, lp.y, lp.z);
+      glUniform1f(ufc_[2], 0.3f * s_.width);
+      const Vec3 lc = s_.light * s_.light_strength;
+      glUniform3f(ufc_[3], lc.x, lc.y, lc.z);
+      glUniform3f(ufc_[4], s_.firebox.brick.x, s_.firebox.brick.y, s_.firebox.brick.z);
+      glUniform1f(ufc_[5], s_.firebox.soot);
+      glUniform1f(ufc_[6], seed_);
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_LESS);
+      glBindVertexArray(firebox_vao_.get());
+      glDrawArrays(GL_TRIANGLES, 0, firebox_vertices_);
+      glDisable(GL_DEPTH_TEST);
+    }
     if (log_count_ > 0) {
       logs_cache_prog_.use();
       glUniformMatrix4fv(ulc_[0], 1, GL_FALSE, f.view_projection.m);
@@ -290,6 +351,58 @@ class Hearth final : public Element {
       cull_back_faces(false);
       glDisable(GL_DEPTH_TEST);
     }
+    glBindVertexArray(0);
+  }
+
+  void make_firebox() {
+    firebox_cache_prog_ = Program::from_library("hearth_firebox.vert", "hearth_firebox.frag");
+    firebox_prog_ = Program::from_library("hearth_firebox.vert", "hearth_firebox_shade.frag");
+    const auto u = [&](const Program& p, const char* n) { return p.uniform(n); };
+    ufc_ = {u(firebox_cache_prog_, "u_view_projection"),
+            u(firebox_cache_prog_, "u_light_pos"),
+            u(firebox_cache_prog_, "u_spread"),
+            u(firebox_cache_prog_, "u_light"),
+            u(firebox_cache_prog_, "u_brick"),
+            u(firebox_cache_prog_, "u_soot"),
+            u(firebox_cache_prog_, "u_seed")};
+    uf_ = {u(firebox_prog_, "u_view_projection"), u(firebox_prog_, "u_flicker"),
+           u(firebox_prog_, "u_cache"), u(firebox_prog_, "u_origin")};
+    std::vector<float> mesh = firebox_mesh(s_.firebox, s_.depth);
+    for (size_t i = 0; i < mesh.size(); i += 9)
+      mesh[i] += position_.x, mesh[i + 1] += position_.y, mesh[i + 2] += position_.z;
+    firebox_vertices_ = static_cast<GLsizei>(mesh.size() / 9);
+    firebox_vao_ = make_vertex_array();
+    glBindVertexArray(firebox_vao_.get());
+    firebox_vbo_ = make_buffer();
+    glBindBuffer(GL_ARRAY_BUFFER, firebox_vbo_.get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.size() * sizeof(float)), mesh.data(),
+                 GL_STATIC_DRAW);
+    const int offsets[] = {0, 3, 5, 8}, sizes[] = {3, 2, 3, 1};
+    for (GLuint k = 0; k < 4; ++k) {
+      glEnableVertexAttribArray(k);
+      glVertexAttribPointer(
+          k, sizes[k], GL_FLOAT, GL_FALSE, 9 * sizeof(float),
+          reinterpret_cast<const void*>(static_cast<uintptr_t>(offsets[k]) * sizeof(float)));
+    }
+    glBindVertexArray(0);
+  }
+
+  // Per frame the firebox only reads its cache and flickers it. It is drawn
+  // first and everything in the box is in front of it, so it needs no depth
+  // (depth tests and writes were a third of its cost on llvmpipe).
+  void draw_firebox(const FrameContext& f) {
+    if (firebox_vertices_ <= 0 || !cache_valid_) return;
+    const float k = s_.light_strength > 0 ? 1.0f : 0.0f;
+    firebox_prog_.use();
+    glUniformMatrix4fv(uf_[0], 1, GL_FALSE, f.view_projection.m);
+    glUniform2f(uf_[1], k * flicker_.to_float(), k * right_flicker_.to_float());
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, log_crack_tex_.get());
+    glUniform1i(uf_[2], 0);
+    glUniform2i(uf_[3], cache_key_.viewport[0], cache_key_.viewport[1]);
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(firebox_vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, firebox_vertices_);
     glBindVertexArray(0);
   }
 
@@ -406,6 +519,14 @@ class Hearth final : public Element {
   GLsizei back_count_ = 0;  // logs [0, back_count_) behind the flames, the rest in front
   std::array<GLint, 4> ubc_{};
   std::array<GLint, 8> ub_{};
+  // The firebox (absent when its width is 0).
+  Program firebox_cache_prog_, firebox_prog_;
+  VertexArray firebox_vao_;
+  Buffer firebox_vbo_;
+  GLsizei firebox_vertices_ = 0;
+  std::array<GLint, 7> ufc_{};
+  std::array<GLint, 4> uf_{};
+  Fixed right_flicker_ = Fixed::from_int(1);
   // The cache (refresh_cache): per screen pixel, what the view alone decides.
   Texture log_colour_tex_, log_crack_tex_, bed_tex_;
   Renderbuffer logs_depth_;
@@ -440,6 +561,17 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.light_strength = static_cast<float>(r.number("light_strength", s.light_strength, 0, 10));
   s.light_at = r.vec3("light_at", {0, 0.3f * s.width, 0});
   s.embers = static_cast<float>(r.number("embers", s.embers, 0, 10));
+  if (r.has("firebox")) {
+    ParamReader b = r.table("firebox");
+    FireboxDesc& fb = s.firebox;
+    fb.width = static_cast<float>(b.number("width", std::max(1.4 * s.width, 0.3), 0.1, 20));
+    fb.height = static_cast<float>(b.number("height", fb.height, 0.1, 10));
+    fb.depth = static_cast<float>(b.number("depth", std::max(0.55, s.depth + 0.2), 0.1, 10));
+    fb.back_width = static_cast<float>(b.number("back_width", fb.back_width, 0.2, 1));
+    fb.brick = b.color("brick", fb.brick);
+    fb.soot = static_cast<float>(b.number("soot", fb.soot, 0, 1));
+    b.finish();
+  }
   auto logs = r.table_array("log");
   if (logs.size() > static_cast<size_t>(kMaxLogs))
     r.fail("log", "expected at most " + std::to_string(kMaxLogs) + " [[log]] tables, got " +

@@ -1,6 +1,6 @@
 // The hearth rendered headless: the ember bed glows and pulses, the logs are
-// lit by the fire's flicker, a front log hides a fire's feet, and bad
-// settings name their key.
+// lit by the fire's flicker, a front log hides a fire's feet, the firebox is
+// lit by the fire and flickers with it, and bad settings name their key.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -115,6 +115,47 @@ TEST(HearthRender, AFrontLogHidesTheFeetOfAFire) {
   EXPECT_LT(covered.mean, open.mean / 3);  // and the log hides it
 }
 
+// The firebox: brick walls lit by the fire, brightest near it, dim in the far
+// corners, warm; its light flickers, the fire's two halves apart.
+constexpr const char* kFirebox =
+    "width = 0.8\ndepth = 0.4\nlogs = 0\nembers = 0\n[element.firebox]\nwidth = 1.4\n"
+    "height = 0.9\ndepth = 0.6\n";
+
+TEST(HearthRender, TheFireboxIsLitByTheFireAndDimAwayFromIt) {
+  test::RenderHarness h(scene(kFirebox), kW, kH);
+  h.run(3);
+  const test::Frame f = h.read();
+  // The back wall just above the bed, behind the fire; the top corners of the
+  // side walls, furthest from it.
+  const Lit behind = measure(f, kW / 2 - 12, kH * 30 / 100, kW / 2 + 12, kH * 42 / 100);
+  const Lit corner = measure(f, 0, 0, 12, kH / 8);
+  EXPECT_GT(behind.mean, 12.0);
+  EXPECT_GT(behind.red_share, 0.5);  // warm: lit by fire, not grey
+  EXPECT_GT(behind.mean, 2.0 * corner.mean);
+  // Without the firebox nothing is drawn there (the room is dark).
+  test::RenderHarness bare(scene("width = 0.8\ndepth = 0.4\nlogs = 0\nembers = 0"), kW, kH);
+  bare.run(3);
+  EXPECT_EQ(measure(bare.read(), kW / 2 - 12, kH * 30 / 100, kW / 2 + 12, kH * 42 / 100).mean, 0.0);
+}
+
+TEST(HearthRender, TheFireboxFlickersAndTheLightMovesAcrossIt) {
+  test::RenderHarness h(scene(kFirebox), kW, kH);
+  double lo = 1e9, hi = 0, ratio_lo = 1e9, ratio_hi = 0;
+  for (int k = 0; k < 24; ++k) {
+    h.run(5);
+    const test::Frame f = h.read();
+    const double left = measure(f, 0, kH / 4, kW / 4, kH / 2).mean;
+    const double right = measure(f, kW * 3 / 4, kH / 4, kW, kH / 2).mean;
+    const double all = measure(f, 0, 0, kW, kH).mean;
+    ASSERT_GT(left, 1.0);
+    ASSERT_GT(right, 1.0);
+    lo = std::min(lo, all), hi = std::max(hi, all);
+    ratio_lo = std::min(ratio_lo, left / right), ratio_hi = std::max(ratio_hi, left / right);
+  }
+  EXPECT_GT(hi, 1.25 * lo);              // the whole box brightens and dims with the fire
+  EXPECT_GT(ratio_hi, 1.15 * ratio_lo);  // and its two sides do not move in step
+}
+
 TEST(HearthRender, BadSettingsNameTheKey) {
   try {
     load_scene_text(scene("logs = 40"), "hearth.toml");
@@ -129,6 +170,18 @@ TEST(HearthRender, BadSettingsNameTheKey) {
     FAIL() << "accepted a log shorter than its radius";
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "element[0].log[0].to");
+  }
+  try {
+    load_scene_text(scene("[element.firebox]\nwidth = -1"), "hearth.toml");
+    FAIL() << "accepted a firebox of width -1";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "element[0].firebox.width");
+  }
+  try {
+    load_scene_text(scene("[element.firebox]\nhieght = 1"), "hearth.toml");
+    FAIL() << "accepted a typo in the firebox";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "element[0].firebox.hieght");
   }
   try {
     load_scene_text(scene("widht = 1"), "hearth.toml");
