@@ -3,6 +3,7 @@
 
 #include "core/log.h"
 #include "display/drm_commit.h"
+#include "display/drm_mode.h"
 
 namespace candela {
 

@@ -1,4 +1,5 @@
 #include "display/drm_commit.h"
+#include "display/drm_mode.h"
 
 #include <cerrno>
 #include <cstring>

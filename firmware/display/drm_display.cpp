@@ -13,6 +13,7 @@
 #include "display/display.h"
 #include "display/drm_commit.h"
 #include "display/drm_flips.h"
+#include "display/drm_mode.h"
 #include "display/drm_hotplug.h"
 #include "display/drm_kms.h"
 #include "display/drm_master.h"

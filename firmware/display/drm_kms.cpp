@@ -15,138 +15,13 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "display/drm_mode.h"
+#include "display/drm_objects.h"
 
 namespace candela {
 namespace {
 
-struct ResourcesDeleter {
-  void operator()(drmModeRes* p) const { drmModeFreeResources(p); }
-};
-struct ConnectorDeleter {
-  void operator()(drmModeConnector* p) const { drmModeFreeConnector(p); }
-};
-struct EncoderDeleter {
-  void operator()(drmModeEncoder* p) const { drmModeFreeEncoder(p); }
-};
-struct PlaneResDeleter {
-  void operator()(drmModePlaneRes* p) const { drmModeFreePlaneResources(p); }
-};
-struct PlaneDeleter {
-  void operator()(drmModePlane* p) const { drmModeFreePlane(p); }
-};
-struct PropsDeleter {
-  void operator()(drmModeObjectProperties* p) const { drmModeFreeObjectProperties(p); }
-};
-struct PropDeleter {
-  void operator()(drmModePropertyRes* p) const { drmModeFreeProperty(p); }
-};
-struct BlobDeleter {
-  void operator()(drmModePropertyBlobRes* p) const { drmModeFreePropertyBlob(p); }
-};
-struct VersionDeleter {
-  void operator()(drmVersion* p) const { drmFreeVersion(p); }
-};
-using Resources = std::unique_ptr<drmModeRes, ResourcesDeleter>;
-using Connector = std::unique_ptr<drmModeConnector, ConnectorDeleter>;
-using Encoder = std::unique_ptr<drmModeEncoder, EncoderDeleter>;
-using PlaneRes = std::unique_ptr<drmModePlaneRes, PlaneResDeleter>;
-using Plane = std::unique_ptr<drmModePlane, PlaneDeleter>;
-using ObjectProps = std::unique_ptr<drmModeObjectProperties, PropsDeleter>;
-using Property = std::unique_ptr<drmModePropertyRes, PropDeleter>;
-using Blob = std::unique_ptr<drmModePropertyBlobRes, BlobDeleter>;
-
-class Fd {
- public:
-  explicit Fd(int fd) : fd_(fd) {}
-  ~Fd() {
-    if (fd_ >= 0) close(fd_);
-  }
-  Fd(const Fd&) = delete;
-  Fd& operator=(const Fd&) = delete;
-  int get() const { return fd_; }
-  int release() { return std::exchange(fd_, -1); }
-
- private:
-  int fd_;
-};
-
-std::string connector_name(const drmModeConnector& c) {
-  const char* type = drmModeGetConnectorTypeName(c.connector_type);
-  return std::string(type ? type : "Unknown") + "-" + std::to_string(c.connector_type_id);
-}
-
-const char* connection_name(drmModeConnection c) {
-  switch (c) {
-    case DRM_MODE_CONNECTED:
-      return "connected";
-    case DRM_MODE_DISCONNECTED:
-      return "disconnected";
-    default:
-      return "unknown";
-  }
-}
-
-// Looks up property ids (and optionally a value) of one KMS object by name.
-class PropertyTable {
- public:
-  PropertyTable(int fd, uint32_t object, uint32_t type)
-      : fd_(fd), props_(drmModeObjectGetProperties(fd, object, type)) {}
-  uint32_t id(const char* name) const { return find(name, nullptr); }
-  bool value(const char* name, uint64_t& out) const { return find(name, &out) != 0; }
-
- private:
-  uint32_t find(const char* name, uint64_t* value) const {
-    if (!props_) return 0;
-    for (uint32_t i = 0; i < props_->count_props; ++i) {
-      Property p(drmModeGetProperty(fd_, props_->props[i]));
-      if (p && std::strcmp(p->name, name) == 0) {
-        if (value) *value = props_->prop_values[i];
-        return p->prop_id;
-      }
-    }
-    return 0;
-  }
-  int fd_;
-  ObjectProps props_;
-};
-
-// The CRTC to drive the connector with: the one already driving it if any,
-// else the first one an encoder of the connector can use.
-int pick_crtc(int fd, const drmModeRes& res, const drmModeConnector& conn, uint32_t& crtc_id) {
-  if (conn.encoder_id) {
-    Encoder enc(drmModeGetEncoder(fd, conn.encoder_id));
-    if (enc && enc->crtc_id)
-      for (int i = 0; i < res.count_crtcs; ++i)
-        if (res.crtcs[i] == enc->crtc_id) {
-          crtc_id = enc->crtc_id;
-          return i;
-        }
-  }
-  for (int e = 0; e < conn.count_encoders; ++e) {
-    Encoder enc(drmModeGetEncoder(fd, conn.encoders[e]));
-    if (!enc) continue;
-    for (int i = 0; i < res.count_crtcs; ++i)
-      if (enc->possible_crtcs & (1u << i)) {
-        crtc_id = res.crtcs[i];
-        return i;
-      }
-  }
-  return -1;
-}
-
-// The modifiers the plane's IN_FORMATS blob lists for `format`.
-std::vector<uint64_t> plane_modifiers(int fd, uint32_t plane_id, uint32_t format) {
-  std::vector<uint64_t> mods;
-  PropertyTable props(fd, plane_id, DRM_MODE_OBJECT_PLANE);
-  uint64_t blob_id = 0;
-  if (!props.value("IN_FORMATS", blob_id) || blob_id == 0) return mods;
-  Blob blob(drmModeGetPropertyBlob(fd, static_cast<uint32_t>(blob_id)));
-  if (!blob) return mods;
-  drmModeFormatModifierIterator it{};
-  while (drmModeFormatModifierBlobIterNext(blob.get(), &it))
-    if (it.fmt == format) mods.push_back(it.mod);
-  return mods;
-}
+using namespace drm;
 
 std::string card_list_error(const std::string& tried) {
   return "drm: no display to show on:" + tried;
@@ -180,56 +55,6 @@ KmsOutput::~KmsOutput() {
     if (drmIsMaster(fd)) drmDropMaster(fd);
     close(fd);
   }
-}
-
-const drmModeModeInfo& choose_mode(const drmModeModeInfo* modes, int count, const DisplayOptions& o,
-                                   const std::string& name) {
-  const drmModeModeInfo* preferred = &modes[0];
-  for (int i = 0; i < count; ++i)
-    if (modes[i].type & DRM_MODE_TYPE_PREFERRED) {
-      preferred = &modes[i];
-      break;
-    }
-  if (o.width <= 0 && o.refresh_hz <= 0) return *preferred;
-  const int want_w = o.width > 0 ? o.width : preferred->hdisplay;
-  const int want_h = o.height > 0 ? o.height : preferred->vdisplay;
-  const drmModeModeInfo* best = nullptr;
-  for (int i = 0; i < count; ++i) {
-    const drmModeModeInfo& m = modes[i];
-    if (m.hdisplay != want_w || m.vdisplay != want_h) continue;
-    if (o.refresh_hz > 0 && static_cast<int>(m.vrefresh) != o.refresh_hz) continue;
-    if (m.flags & DRM_MODE_FLAG_INTERLACE) continue;
-    // Among equals the preferred one, else the highest refresh.
-    if (!best || (m.type & DRM_MODE_TYPE_PREFERRED) ||
-        (!(best->type & DRM_MODE_TYPE_PREFERRED) && m.vrefresh > best->vrefresh))
-      best = &m;
-  }
-  if (best) return *best;
-  // Appended, not "@" + string: GCC 12's -Wrestrict misfires on that at -O3.
-  std::string rate;
-  if (o.refresh_hz > 0) rate.append("@").append(std::to_string(o.refresh_hz));
-  LOG_WARN("drm: %s has no mode %dx%d%s; using its preferred mode %s", name.c_str(), want_w, want_h,
-           rate.c_str(), describe_mode(*preferred).c_str());
-  return *preferred;
-}
-
-bool needs_new_mode(bool had_screen, uint32_t old_connector, const drmModeModeInfo& old_mode,
-                    uint32_t connector, const drmModeModeInfo& mode) {
-  // The timings, not the flags of the connector's list (another monitor may
-  // list the same mode without marking it preferred) nor the name.
-  const drmModeModeInfo& a = old_mode;
-  const drmModeModeInfo& b = mode;
-  const bool same =
-      a.clock == b.clock && a.hdisplay == b.hdisplay && a.hsync_start == b.hsync_start &&
-      a.hsync_end == b.hsync_end && a.htotal == b.htotal && a.hskew == b.hskew &&
-      a.vdisplay == b.vdisplay && a.vsync_start == b.vsync_start && a.vsync_end == b.vsync_end &&
-      a.vtotal == b.vtotal && a.vscan == b.vscan && a.vrefresh == b.vrefresh && a.flags == b.flags;
-  return !had_screen || connector != old_connector || !same;
-}
-
-std::string describe_mode(const drmModeModeInfo& m) {
-  return std::to_string(m.hdisplay) + "x" + std::to_string(m.vdisplay) + "@" +
-         std::to_string(m.vrefresh) + ((m.type & DRM_MODE_TYPE_PREFERRED) ? " (preferred)" : "");
 }
 
 bool probe_kms_connector(KmsOutput& out, const DisplayOptions& options, uint32_t format,

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "display/drm_commit.h"
+#include "display/drm_mode.h"
 
 namespace candela {
 

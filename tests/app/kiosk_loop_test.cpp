@@ -17,7 +17,7 @@
 #include "app/kiosk.h"
 #include "app/kiosk_post.h"
 #include "core/clock.h"
-#include "display/drm_kms.h"
+#include "display/drm_mode.h"
 #include "gl/gles.h"
 #include "input/input_hub.h"
 #include "support/allocation_counter.h"

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "display/drm_kms.h"
+#include "display/drm_mode.h"
 
 namespace candela {
 namespace {

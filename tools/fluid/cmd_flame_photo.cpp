@@ -28,15 +28,12 @@ int run_flame_photo(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return candela::usage_exit(app, e);
   }
-  try {
+  return candela::fluid::bad_values_exit("flame-photo", [&] {
     int w = 0, h = 0;
     candela::fluid::parse_size("--size", size, w, h);
     candela::write_png(out, candela::fluid::render_flame_photo(w, h, seed, !no_alpha));
     return 0;
-  } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "candela-tool flame-photo: %s\n", e.what());
-    return 2;
-  }
+  });
 }
 
 }  // namespace

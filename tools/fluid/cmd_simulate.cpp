@@ -141,7 +141,7 @@ int run_simulate(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return candela::usage_exit(app, e);
   }
-  try {
+  return candela::fluid::bad_values_exit("simulate", [&] {
     SimulateOptions opt;
     opt.params = preset_params(preset);
     if (!grid.empty()) parse_size("--grid", grid, opt.params.width, opt.params.height);
@@ -220,10 +220,7 @@ int run_simulate(int argc, char** argv) {
                    s.t_reference, s.max_pressure_iterations, s.max_relative_residual,
                    s.unconverged_steps ? " (some steps hit the iteration limit)" : "");
     return 0;
-  } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "candela-tool simulate: %s\n", e.what());
-    return 2;
-  }
+  });
 }
 
 }  // namespace

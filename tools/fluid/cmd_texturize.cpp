@@ -65,7 +65,7 @@ int run_texturize(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return candela::usage_exit(app, e);
   }
-  try {
+  return candela::fluid::bad_values_exit("texturize", [&] {
     validate(p);
     ControlChannel channel;
     if (control == "auto")
@@ -135,10 +135,7 @@ int run_texturize(int argc, char** argv) {
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                    out.c_str());
     return 0;
-  } catch (const std::invalid_argument& e) {
-    std::fprintf(stderr, "candela-tool texturize: %s\n", e.what());
-    return 2;
-  }
+  });
 }
 
 }  // namespace

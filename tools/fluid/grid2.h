@@ -25,37 +25,44 @@ struct Grid2 {
   }
   void fill(double v) { std::fill(data.begin(), data.end(), v); }
 
-  // Bilinear sample at (x, y) in index units (sample (i, j) sits at (i, j)),
-  // clamped to the array: points outside read the nearest edge value.
-  // Hot path of advection: kept inline and branch-light.
-  [[gnu::always_inline]] inline double sample(double x, double y) const {
+  // The four samples around (x, y), clamped to the array: the first's
+  // address, the steps to its right and lower neighbours (0 where the array
+  // is one sample wide or tall) and where (x, y) lies between them.
+  struct Corner {
+    const double* p;
+    int di;
+    size_t dj;
+    double fx, fy;
+  };
+  [[gnu::always_inline]] inline Corner corner(double x, double y) const {
     const double mx = width - 1, my = height - 1;
     x = x < 0.0 ? 0.0 : (x > mx ? mx : x);
     y = y < 0.0 ? 0.0 : (y > my ? my : y);
     int i0 = static_cast<int>(x), j0 = static_cast<int>(y);
     i0 -= (i0 == width - 1 && i0 > 0);
     j0 -= (j0 == height - 1 && j0 > 0);
-    const int di = width > 1 ? 1 : 0;
-    const size_t dj = height > 1 ? static_cast<size_t>(width) : 0;
-    const double fx = x - i0, fy = y - j0;
-    const double* p = &data[static_cast<size_t>(j0) * width + i0];
-    const double a = p[0] + (p[di] - p[0]) * fx;
-    const double b = p[dj] + (p[dj + di] - p[dj]) * fx;
-    return a + (b - a) * fy;
+    return {&data[static_cast<size_t>(j0) * width + i0], width > 1 ? 1 : 0,
+            height > 1 ? static_cast<size_t>(width) : 0, x - i0, y - j0};
+  }
+
+  // Bilinear sample at (x, y) in index units (sample (i, j) sits at (i, j)),
+  // clamped to the array: points outside read the nearest edge value.
+  // Hot path of advection: kept inline and branch-light.
+  [[gnu::always_inline]] inline double sample(double x, double y) const {
+    const Corner c = corner(x, y);
+    const double* p = c.p;
+    const double a = p[0] + (p[c.di] - p[0]) * c.fx;
+    const double b = p[c.dj] + (p[c.dj + c.di] - p[c.dj]) * c.fx;
+    return a + (b - a) * c.fy;
   }
 
   // The smallest and largest of the four values sample(x, y) blends: the
   // bounds MacCormack advection clamps to, so it adds no new extrema.
   void sample_range(double x, double y, double& lo, double& hi) const {
-    const double mx = width - 1, my = height - 1;
-    x = x < 0.0 ? 0.0 : (x > mx ? mx : x);
-    y = y < 0.0 ? 0.0 : (y > my ? my : y);
-    int i0 = static_cast<int>(x), j0 = static_cast<int>(y);
-    i0 -= (i0 == width - 1 && i0 > 0);
-    j0 -= (j0 == height - 1 && j0 > 0);
-    const int di = width > 1 ? 1 : 0;
-    const size_t dj = height > 1 ? static_cast<size_t>(width) : 0;
-    const double* p = &data[static_cast<size_t>(j0) * width + i0];
+    const Corner c = corner(x, y);
+    const double* p = c.p;
+    const int di = c.di;
+    const size_t dj = c.dj;
     lo = std::min(std::min(p[0], p[di]), std::min(p[dj], p[dj + di]));
     hi = std::max(std::max(p[0], p[di]), std::max(p[dj], p[dj + di]));
   }

@@ -41,7 +41,7 @@ TEST(Pca, MatchesNumpySvdOnARealClip) {
             static_cast<std::streamsize>(d.pixels.size()));
   }
   const std::string cmd =
-      "/usr/bin/python3 " + std::string(CANDELA_SOURCE_DIR) + "/tests/model/pca_reference.py " +
+      "/usr/bin/python3 " + std::string(CANDELA_SOURCE_DIR) + "/tests/tools/model/pca_reference.py " +
       dir + "/frames.u8 " + std::to_string(d.frames()) + " " + std::to_string(d.height) + " " +
       std::to_string(d.width) + " " + std::to_string(k) + " " + dir + "/ref.txt";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;

@@ -2,7 +2,7 @@
 // (i7-2600K, MATLAB/C++): EigenFires PCA of 2197 frames at 410x670 took 45 min
 // + 20 min projection; Direct Bridging 65-101 ms, End Growing 104-416 ms per
 // transition; Learning Flames ARP learning 30 min.
-//   build/tests/model/bench_model
+//   build/tests/tools/model/bench_model
 #include <benchmark/benchmark.h>
 
 #include <cstdio>

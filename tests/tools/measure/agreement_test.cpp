@@ -57,7 +57,7 @@ json python_reference(const std::vector<Clip>& clips,
   const fs::path out =
       fs::temp_directory_path() / ("candela_measure_ref_" + std::to_string(getpid()) + ".json");
   std::string cmd = "/usr/bin/python3 " + std::string(CANDELA_SOURCE_DIR) +
-                    "/tests/measure/eval_reference.py " + CANDELA_EVAL_DIR + " " +
+                    "/tests/tools/measure/eval_reference.py " + CANDELA_EVAL_DIR + " " +
                     std::to_string(CANDELA_MEASURE_TEST_FRAMES) + " " + out.string();
   for (const Clip& c : clips)
     cmd += std::string(" ") + c.name + " " + frames_dir(c) + " " + std::to_string(c.fps);
