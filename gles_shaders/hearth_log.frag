@@ -90,8 +90,10 @@ void main() {
     vec2 cell = char_cells(vec2(q.x * 2.0, q.y * 8.0));
     // The blocks: dull black with a faint sheen, darker toward their cracks,
     // each rounded (lighter in the middle) so the char has relief.
-    float dome = smoothstep(0.0, 0.35, cell.x);
-    vec3 char_colour = vec3(0.05, 0.042, 0.036) * (0.5 + 0.8 * cell.y) * (0.25 + 0.9 * dome);
+    // Under firelight a strong dome made the blocks read as cobbles: the
+    // relief is kept faint, the seams narrow.
+    float dome = smoothstep(0.0, 0.15, cell.x);
+    vec3 char_colour = vec3(0.045, 0.038, 0.033) * (0.7 + 0.5 * cell.y) * (0.45 + 0.55 * dome);
     // White-grey ash on some blocks' crowns, most where the fire is hottest.
     float ash = smoothstep(0.55, 0.9, cell.y + 0.3 * above) * smoothstep(0.1, 0.4, cell.x) *
                 smoothstep(0.4, 0.7, noise(q * vec2(6.0, 16.0) + 7.0));
