@@ -78,11 +78,10 @@ TEST(KioskLoop, SwapsBetweenFramesThenDimsWithoutAllocation) {
 #endif
   // Dimmed to 0.5: the post pass draws every frame.
   s.max_frames = 120;
-  test::start_counting_allocations();
-  const LoopResult r = run_frame_loop(*display, scene, s);
-  const long allocations = test::stop_counting_allocations();
+  LoopResult r;
+  EXPECT_EQ(test::allocations_during([&] { r = run_frame_loop(*display, scene, s); }), 0)
+      << "operator new called during the frame loop";
   EXPECT_EQ(r.frames, 120u);
-  EXPECT_EQ(allocations, 0) << "operator new called during the frame loop";
 }
 
 // Issue 34: --frames bounds a run although the screen stays off (a schedule

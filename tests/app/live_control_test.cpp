@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "support/ask_line.h"
 #include "support/program_command.h"
 
 extern char** environ;
@@ -144,18 +145,7 @@ class Candela {
     }
     return false;
   }
-  std::string ask(const std::string& line) {
-    const std::string msg = line + "\n";
-    if (send(fd_, msg.data(), msg.size(), MSG_NOSIGNAL) != static_cast<ssize_t>(msg.size()))
-      return "<send failed>";
-    std::string reply;
-    char c;
-    while (recv(fd_, &c, 1, 0) == 1) {
-      if (c == '\n') return reply;
-      reply += c;
-    }
-    return "<no reply>";
-  }
+  std::string ask(const std::string& line) { return test::ask_line(fd_, line); }
   // Asks `state` until `ok(state)` or `seconds` pass; returns the last state.
   template <typename F>
   std::string state_until(F ok, int seconds) {

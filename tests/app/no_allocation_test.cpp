@@ -63,11 +63,10 @@ TEST(FrameLoop, NoHeapAllocationPerFrame) {
     s.max_frames = 10;  // warm-up: first-use allocations in drivers and caches
     run_frame_loop(*display, scene, s);
     s.max_frames = 120;
-    test::start_counting_allocations();
-    const LoopResult r = run_frame_loop(*display, scene, s);
-    const long allocations = test::stop_counting_allocations();
+    LoopResult r;
+    EXPECT_EQ(test::allocations_during([&] { r = run_frame_loop(*display, scene, s); }), 0)
+        << "operator new called during the frame loop";
     EXPECT_EQ(r.frames, 120u);
-    EXPECT_EQ(allocations, 0) << "operator new called during the frame loop";
   }
 }
 
@@ -94,11 +93,10 @@ TEST(FrameLoop, NoHeapAllocationWithSystemdNotify) {
   EXPECT_EQ(getenv("NOTIFY_SOCKET"), nullptr) << "children would inherit NOTIFY_SOCKET";
   s.notify = &notify;
   s.max_frames = 120;
-  test::start_counting_allocations();
-  const LoopResult r = run_frame_loop(*display, scene, s);
-  const long allocations = test::stop_counting_allocations();
+  LoopResult r;
+  EXPECT_EQ(test::allocations_during([&] { r = run_frame_loop(*display, scene, s); }), 0)
+      << "operator new called during the frame loop";
   EXPECT_EQ(r.frames, 120u);
-  EXPECT_EQ(allocations, 0) << "operator new called during the frame loop";
   char buf[256];
   const ssize_t n = recv(rx, buf, sizeof(buf) - 1, MSG_DONTWAIT);
   ASSERT_GT(n, 0);

@@ -17,6 +17,7 @@
 #include "scene/element.h"
 #include "scene/scene_file.h"
 #include "support/render_harness.h"
+#include "support/scene_text.h"
 
 namespace candela {
 namespace {
@@ -155,14 +156,7 @@ std::unique_ptr<ElementSpec> parse_flat_flame(ParamReader& r) {
 const ElementKind kFlatFlame{"flat_flame", "a flat-colour test flame", parse_flat_flame};
 
 SceneDesc scene(const std::string& elements) {
-  const std::string text = R"(
-[background]
-color = "#000000"
-[camera]
-position = [0.0, 0.2, 1.5]
-target = [0.0, 0.2, 0.0]
-fov = 40
-)" + elements;
+  const std::string text = test::black_room(0.0, 0.2, 1.5, 0.0, 0.2, 0.0, 40) + elements;
   return load_scene_text(text, "<flat flame>", {&kFlatFlame, 1});
 }
 

@@ -23,12 +23,6 @@ std::string builtin_scene_list() { return "default, eigen-fireplace"; }
 bool is_scene_name(const std::string& label) {
   return label.find('/') == std::string::npos && !label.ends_with(".toml");
 }
-namespace scenes {
-std::string_view find(std::string_view) { return {}; }
-}  // namespace scenes
-namespace noise_tables {
-std::string_view find(std::string_view) { return {}; }
-}  // namespace noise_tables
 }  // namespace candela
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

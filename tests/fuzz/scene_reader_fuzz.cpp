@@ -15,13 +15,6 @@
 #include "scene/scene_file.h"
 
 namespace candela {
-namespace scenes {
-std::string_view find(std::string_view) { return {}; }
-}  // namespace scenes
-namespace noise_tables {
-std::string_view find(std::string_view) { return {}; }
-}  // namespace noise_tables
-
 namespace {
 class FuzzSpec final : public ElementSpec {
  public:

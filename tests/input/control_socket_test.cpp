@@ -26,6 +26,7 @@
 #include "input/input_hub.h"
 #include "input/kiosk_control.h"
 #include "scene/element.h"
+#include "support/ask_line.h"
 #include "support/program_command.h"
 
 extern char** environ;
@@ -57,18 +58,7 @@ class Client {
   ~Client() { close(fd_); }
   bool connected() const { return connected_; }
   int fd() const { return fd_; }
-  std::string ask(const std::string& line) {
-    const std::string msg = line + "\n";
-    if (send(fd_, msg.data(), msg.size(), MSG_NOSIGNAL) != static_cast<ssize_t>(msg.size()))
-      return "<send failed>";
-    std::string reply;
-    char c;
-    while (recv(fd_, &c, 1, 0) == 1) {
-      if (c == '\n') return reply;
-      reply += c;
-    }
-    return "<no reply>";
-  }
+  std::string ask(const std::string& line) { return test::ask_line(fd_, line); }
 
  private:
   int fd_ = -1;

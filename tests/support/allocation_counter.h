@@ -11,4 +11,12 @@ void start_counting_allocations();
 // operator new calls since start_counting_allocations().
 long stop_counting_allocations();
 
+// How many times `run()` called operator new.
+template <class Run>
+long allocations_during(Run&& run) {
+  start_counting_allocations();
+  run();
+  return stop_counting_allocations();
+}
+
 }  // namespace candela::test

@@ -10,6 +10,7 @@
 
 #include "input/key_input.h"
 #include "support/render_harness.h"
+#include "support/scene_text.h"
 
 namespace candela {
 namespace {
@@ -19,13 +20,7 @@ constexpr float kCandleHeight = 0.08f, kRadius = 0.022f, kFlameHeight = 0.055f;
 const Vec3 kCamera{0.0f, 0.09f, 0.6f}, kTarget{0.0f, 0.09f, 0.0f};
 
 std::string scene(int candles, double glow_strength = 0.55, const std::string& extra = "") {
-  std::string s = R"(
-[background]
-color = "#000000"
-[camera]
-position = [0.0, 0.09, 0.6]
-target = [0.0, 0.09, 0.0]
-fov = 35
+  std::string s = test::black_room(0.0, 0.09, 0.6, 0.0, 0.09, 0.0, 35) + R"(
 [[element]]
 kind = "candles"
 flame_height = 0.055

@@ -21,6 +21,7 @@
 #include "story/story_plan.h"
 #include "story/story_player.h"
 #include "support/render_harness.h"
+#include "support/scene_text.h"
 #include "wind/wind_field.h"
 
 namespace candela {
@@ -288,14 +289,8 @@ class SteppedScene {
   std::vector<uint8_t> pixels_;
 };
 
-constexpr const char* kWindScene = R"(
-seed = 4
-[background]
-color = "#000000"
-[camera]
-position = [0.0, 0.3, 1.2]
-target = [0.0, 0.3, 0.0]
-fov = 40
+const std::string kWindScene =
+    "seed = 4\n" + test::black_room(0.0, 0.3, 1.2, 0.0, 0.3, 0.0, 40) + R"(
 [[element]]
 kind = "eigenflame"
 position = [0.0, 0.0, 0.0]

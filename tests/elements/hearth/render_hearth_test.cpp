@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "scene/scene_file.h"
 #include "support/render_harness.h"
+#include "support/scene_text.h"
 
 namespace candela {
 namespace {
@@ -16,13 +17,7 @@ namespace {
 constexpr int kW = 160, kH = 90;
 
 std::string scene(const std::string& hearth, const std::string& extra = "") {
-  return R"(
-[background]
-color = "#000000"
-[camera]
-position = [0.0, 0.5, 1.4]
-target = [0.0, 0.1, 0.0]
-fov = 40
+  return test::black_room(0.0, 0.5, 1.4, 0.0, 0.1, 0.0, 40) + R"(
 [[element]]
 kind = "hearth"
 )" + hearth +

@@ -13,6 +13,7 @@
 #include "gl/math.h"
 #include "scene/scene_file.h"
 #include "support/render_harness.h"
+#include "support/scene_text.h"
 
 namespace candela {
 namespace {
@@ -24,13 +25,7 @@ const Vec3 kPosition{0.0f, 0.0f, 0.0f}, kSize{0.45f, 0.6f, 0.45f};
 std::string scene(const std::string& extra, const std::string& noise = "flow3d",
                   const std::string& head = "",
                   const std::string& quality = "steps = 12\noctaves = 3\n") {
-  return head + R"(
-[background]
-color = "#000000"
-[camera]
-position = [0.0, 0.35, 1.6]
-target = [0.0, 0.3, 0.0]
-fov = 40
+  return head + test::black_room(0.0, 0.35, 1.6, 0.0, 0.3, 0.0, 40) + R"(
 [[element]]
 kind = "perlinfire"
 position = [0.0, 0.0, 0.0]
