@@ -4,6 +4,7 @@
 // connector, and the modifiers a plane scans out. Internal to display/.
 #pragma once
 
+#include <unistd.h>
 #include <xf86drm.h>
 #include <xf86drmMode.h>
 
