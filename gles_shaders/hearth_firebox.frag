@@ -23,19 +23,6 @@ uniform float u_spread;     // half the distance between the outer lights (m, al
 uniform vec3 u_light;       // the light's colour times its strength
 uniform vec3 u_brick;
 uniform float u_soot;
-uniform float u_seed;
-
-float hash(vec2 p) {
-  p = fract(p * vec2(0.1031, 0.1030) + u_seed * 0.013);
-  p += dot(p, p.yx + 33.33);
-  return fract((p.x + p.y) * p.x);
-}
-float noise(vec2 p) {
-  vec2 i = floor(p), f = fract(p);
-  vec2 s = f * f * (3.0 - 2.0 * f);
-  return mix(mix(hash(i), hash(i + vec2(1, 0)), s.x), mix(hash(i + vec2(0, 1)), hash(i + vec2(1, 1)), s.x), s.y);
-}
-float fbm(vec2 p) { return 0.55 * noise(p) + 0.3 * noise(p * 2.1 + 7.0) + 0.15 * noise(p * 4.3 + 3.0); }
 
 // Running bond: x the distance to the nearest mortar line (m), y the brick's hash.
 vec2 bricks(vec2 p, vec2 size) {

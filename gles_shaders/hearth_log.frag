@@ -6,7 +6,8 @@
 // cracks glow; pale end grain with rings and a burnt rim. Out: the unlit
 // colour (RGB10_A2) and the cracks' glow (two 8-bit halves) with their
 // pulse's two hashes. hearth_log_shade.frag lights it and pulses the cracks
-// every frame, so the noise here runs only when the view changes.
+// every frame, so the noise here (value_noise.frag) runs only when the view
+// changes.
 precision highp float;
 
 in vec3 v_world;
@@ -19,18 +20,6 @@ layout(location = 1) out vec4 o_crack;
 
 uniform vec3 u_light_pos;
 uniform vec3 u_bark;
-
-float hash(vec2 p) {
-  p = fract(p * vec2(0.1031, 0.1030));
-  p += dot(p, p.yx + 33.33);
-  return fract((p.x + p.y) * p.x);
-}
-float noise(vec2 p) {
-  vec2 i = floor(p), f = fract(p);
-  vec2 s = f * f * (3.0 - 2.0 * f);
-  return mix(mix(hash(i), hash(i + vec2(1, 0)), s.x), mix(hash(i + vec2(0, 1)), hash(i + vec2(1, 1)), s.x), s.y);
-}
-float fbm(vec2 p) { return 0.55 * noise(p) + 0.3 * noise(p * 2.1 + 7.0) + 0.15 * noise(p * 4.3 + 3.0); }
 
 // Char blocks: distance to the nearest cell border of a jittered grid (the
 // cracks) and the cell's own hash (each block burns and pulses on its own).

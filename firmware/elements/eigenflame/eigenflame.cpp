@@ -196,14 +196,15 @@ class EigenFlame final : public Element {
       renderer_->set_frame(player_->shown_frame());
     }
     if (s.embers.enabled) {
-      embers_ = Program::from_library("floor_quad.vert", "eigenflame_embers.frag");
+      embers_ =
+          Program::from_library("floor_quad.vert", {"value_noise.frag", "eigenflame_embers.frag"});
       embers_vao_ = make_vertex_array();
       ue_ = {embers_.uniform("u_view_projection"),
              embers_.uniform("u_centre"),
              embers_.uniform("u_half"),
              embers_.uniform("u_time"),
              embers_.uniform("u_colour"),
-             embers_.uniform("u_seed")};
+             embers_.uniform("u_noise_seed")};
       ember_seed_ = static_cast<float>(seed % 1000) / 1000.0f;
     }
   }

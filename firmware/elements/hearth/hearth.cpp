@@ -117,18 +117,20 @@ std::vector<float> log_mesh() {
   return v;
 }
 
-// The firebox's surfaces as triangles, relative to the hearth's position:
-// per vertex its position, its coordinates on the surface in metres (the
+// The firebox's surfaces as triangles around `origin` (the hearth's
+// position): per vertex its position, its coordinates on the surface in metres (the
 // sides continue the back wall's, so the courses of bricks run round the
 // corners), its normal (into the box) and which surface (0 back, 1 side, 2 floor).
-std::vector<float> firebox_mesh(const FireboxDesc& b, float bed_depth) {
+std::vector<float> firebox_mesh(const FireboxDesc& b, float bed_depth, Vec3 origin) {
   std::vector<float> v;
   const float zf = bed_depth * 0.5f + 0.06f, zb = zf - b.depth;
   const float fw = b.width * 0.5f, bw = fw * b.back_width, h = b.height;
   const auto quad = [&](const std::array<Vec3, 4>& p, const std::array<std::array<float, 2>, 4>& uv,
                         Vec3 n, float surface) {
-    for (int i : {0, 1, 2, 0, 2, 3})
-      v.insert(v.end(), {p[i].x, p[i].y, p[i].z, uv[i][0], uv[i][1], n.x, n.y, n.z, surface});
+    for (int i : {0, 1, 2, 0, 2, 3}) {
+      const Vec3 at = p[i] + origin;
+      v.insert(v.end(), {at.x, at.y, at.z, uv[i][0], uv[i][1], n.x, n.y, n.z, surface});
+    }
   };
   quad({Vec3{-bw, 0, zb}, Vec3{bw, 0, zb}, Vec3{bw, h, zb}, Vec3{-bw, h, zb}},
        {{{-bw, 0}, {bw, 0}, {bw, h}, {-bw, h}}}, Vec3{0, 0, 1}, 0);
@@ -147,7 +149,8 @@ class Hearth final : public Element {
  public:
   Hearth(const HearthSettings& s, Vec3 position, uint64_t seed)
       : s_(s), position_(position), light_(seed), seed_(static_cast<float>(seed % 1000) * 0.37f) {
-    logs_cache_prog_ = Program::from_library("hearth_log.vert", "hearth_log.frag");
+    logs_cache_prog_ =
+        Program::from_library("hearth_log.vert", {"value_noise.frag", "hearth_log.frag"});
     logs_prog_ = Program::from_library("hearth_log.vert", "hearth_log_shade.frag");
     bed_cache_prog_ = Program::from_library("floor_quad.vert", "hearth_bed.frag");
     bed_prog_ = Program::from_library("floor_quad.vert", "hearth_bed_shade.frag");
@@ -247,8 +250,8 @@ class Hearth final : public Element {
     if (pass != DrawPass::kBody) return;
     const float t = static_cast<float>(time_.to_double());
     const Vec3 lc = s_.light * (s_.light_strength * flicker_.to_float());
-    // The firebox behind everything, writing depth; the bed flat on its
-    // floor; then the logs over it, depth-tested against each other.
+    // The firebox behind everything; the bed flat on its floor; then the
+    // logs over it, depth-tested against each other.
     draw_firebox(f);
     if (s_.embers > 0) {
       bed_prog_.use();
@@ -323,14 +326,14 @@ class Hearth final : public Element {
       // The firebox shares the logs' cache: the logs, drawn after it, hide it where they stand.
       firebox_cache_prog_.use();
       glUniformMatrix4fv(ufc_[0], 1, GL_FALSE, f.view_projection.m);
-      const Vec3 lp = position_ + s_.light_at;
+      const Vec3 lp = light_pos();
       glUniform3f(ufc_[1], lp.x, lp.y, lp.z);
       glUniform1f(ufc_[2], 0.3f * s_.width);
       const Vec3 lc = s_.light * s_.light_strength;
       glUniform3f(ufc_[3], lc.x, lc.y, lc.z);
       glUniform3f(ufc_[4], s_.firebox.brick.x, s_.firebox.brick.y, s_.firebox.brick.z);
       glUniform1f(ufc_[5], s_.firebox.soot);
-      glUniform1f(ufc_[6], seed_);
+      glUniform1f(ufc_[6], seed_ * 0.013f);
       glEnable(GL_DEPTH_TEST);
       glDepthFunc(GL_LESS);
       glBindVertexArray(firebox_vao_.get());
@@ -340,7 +343,7 @@ class Hearth final : public Element {
     if (log_count_ > 0) {
       logs_cache_prog_.use();
       glUniformMatrix4fv(ulc_[0], 1, GL_FALSE, f.view_projection.m);
-      const Vec3 lp = position_ + s_.light_at;
+      const Vec3 lp = light_pos();
       glUniform3f(ulc_[1], lp.x, lp.y, lp.z);
       glUniform3f(ulc_[2], s_.bark.x, s_.bark.y, s_.bark.z);
       glEnable(GL_DEPTH_TEST);
@@ -355,21 +358,17 @@ class Hearth final : public Element {
   }
 
   void make_firebox() {
-    firebox_cache_prog_ = Program::from_library("hearth_firebox.vert", "hearth_firebox.frag");
+    firebox_cache_prog_ =
+        Program::from_library("hearth_firebox.vert", {"value_noise.frag", "hearth_firebox.frag"});
     firebox_prog_ = Program::from_library("hearth_firebox.vert", "hearth_firebox_shade.frag");
     const auto u = [&](const Program& p, const char* n) { return p.uniform(n); };
-    ufc_ = {u(firebox_cache_prog_, "u_view_projection"),
-            u(firebox_cache_prog_, "u_light_pos"),
-            u(firebox_cache_prog_, "u_spread"),
-            u(firebox_cache_prog_, "u_light"),
-            u(firebox_cache_prog_, "u_brick"),
-            u(firebox_cache_prog_, "u_soot"),
-            u(firebox_cache_prog_, "u_seed")};
+    ufc_ = {u(firebox_cache_prog_, "u_view_projection"), u(firebox_cache_prog_, "u_light_pos"),
+            u(firebox_cache_prog_, "u_spread"),          u(firebox_cache_prog_, "u_light"),
+            u(firebox_cache_prog_, "u_brick"),           u(firebox_cache_prog_, "u_soot"),
+            u(firebox_cache_prog_, "u_noise_seed")};
     uf_ = {u(firebox_prog_, "u_view_projection"), u(firebox_prog_, "u_flicker"),
            u(firebox_prog_, "u_cache"), u(firebox_prog_, "u_origin")};
-    std::vector<float> mesh = firebox_mesh(s_.firebox, s_.depth);
-    for (size_t i = 0; i < mesh.size(); i += 9)
-      mesh[i] += position_.x, mesh[i + 1] += position_.y, mesh[i + 2] += position_.z;
+    const std::vector<float> mesh = firebox_mesh(s_.firebox, s_.depth, position_);
     firebox_vertices_ = static_cast<GLsizei>(mesh.size() / 9);
     firebox_vao_ = make_vertex_array();
     glBindVertexArray(firebox_vao_.get());
@@ -405,6 +404,9 @@ class Hearth final : public Element {
     glDrawArrays(GL_TRIANGLES, 0, firebox_vertices_);
     glBindVertexArray(0);
   }
+
+  // Where the firelight comes from, in the scene.
+  Vec3 light_pos() const { return position_ + s_.light_at; }
 
   static Texture make_cache_texture(GLenum format, int w, int h) {
     Texture t = make_texture();
@@ -482,7 +484,7 @@ class Hearth final : public Element {
     const float t = static_cast<float>(time_.to_double());
     logs_prog_.use();
     glUniformMatrix4fv(ul_[0], 1, GL_FALSE, f.view_projection.m);
-    const Vec3 lp = position_ + s_.light_at;
+    const Vec3 lp = light_pos();
     glUniform3f(ul_[1], lp.x, lp.y, lp.z);
     glUniform4f(ul_[2], lc.x, lc.y, lc.z, s_.embers);
     glUniform1f(ul_[3], t);
