@@ -6,17 +6,17 @@ precision highp int;
 
 uniform vec2 u_resolution;
 uniform float u_phase;  // 0..1: marker position across the screen
-uniform int u_frame;    // frames presented so far
+uniform int u_segments[8];  // the frame counter's digits, left to right, as segment masks
 out vec4 o_color;
 
 const vec3 kBars[8] = vec3[8](vec3(1.0), vec3(1.0, 1.0, 0.0), vec3(0.0, 1.0, 1.0), vec3(0.0, 1.0, 0.0),
                               vec3(1.0, 0.0, 1.0), vec3(1.0, 0.0, 0.0), vec3(0.0, 0.0, 1.0), vec3(0.0));
 
-// Seven-segment digit d at cell-local p in [0,1]^2 (y down).
-float segment_digit(int d, vec2 p) {
-  // Segments a..g as bits.
-  const int kMask[10] = int[10](0x3F, 0x06, 0x5B, 0x4F, 0x66, 0x6D, 0x7D, 0x07, 0x7F, 0x6F);
-  int m = kMask[d];
+// A seven-segment digit (segments a..g as the bits of m) at cell-local p in
+// [0,1]^2 (y down). The digits' masks come from the CPU: a software GPU runs
+// every branch for every pixel, and dividing the counter down per pixel was
+// most of the pattern's cost.
+float segment_digit(int m, vec2 p) {
   float t = 0.14;
   float on = 0.0;
   bool hx = p.x > t && p.x < 1.0 - t;
@@ -49,10 +49,7 @@ void main() {
     int cell = int(floor(q.x / (w * 1.3)));
     vec2 local = vec2(mod(q.x, w * 1.3) / w, q.y / h);
     if (cell >= 0 && cell < 8 && local.x <= 1.0 && local.y >= 0.0 && local.y <= 1.0) {
-      int div = 1;
-      for (int i = 0; i < 7 - cell; ++i) div *= 10;
-      int digit = (u_frame / div) % 10;
-      c = vec3(segment_digit(digit, local));
+      c = vec3(segment_digit(u_segments[cell], local));
     }
   } else {
     // Marker band: a white square on grey, its left edge at u_phase.

@@ -1,6 +1,10 @@
 // The test pattern, rendered headless: bar colours, marker position, border.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <iterator>
+#include <string>
+
 #include "elements/test_pattern/test_pattern.h"
 #include "support/render_harness.h"
 
@@ -58,6 +62,39 @@ TEST(TestPattern, MarkerMovesWithTheAnimationClock) {
     // The band itself is grey around the marker.
     expect_near(f.at(first > kW / 2 ? 10 : kW - 10, y), 64, 64, 64, 3);
   }
+}
+
+// Reads the counter band's eight seven-segment digits (the shader's layout:
+// cells 0.7 of the band high, 0.55 as wide, 1.3 widths apart), by sampling
+// each segment's middle; -1 for a cell that is no digit.
+std::string read_counter(const test::Frame& f, int h) {
+  static constexpr int kMask[10] = {0x3F, 0x06, 0x5B, 0x4F, 0x66, 0x6D, 0x7D, 0x07, 0x7F, 0x6F};
+  // Segment a..g middles, cell-local (x right, y down).
+  static constexpr double kAt[7][2] = {{0.5, 0.07},  {0.93, 0.25}, {0.93, 0.75}, {0.5, 0.93},
+                                       {0.07, 0.75}, {0.07, 0.25}, {0.5, 0.5}};
+  const double band = h / 6.0, ch = band * 0.7, cw = ch * 0.55;
+  std::string out;
+  for (int cell = 0; cell < 8; ++cell) {
+    int mask = 0;
+    for (int s = 0; s < 7; ++s) {
+      const double x = band * 0.15 + cell * cw * 1.3 + kAt[s][0] * cw;
+      const double y = h * 2.0 / 3.0 + band * 0.15 + kAt[s][1] * ch;
+      if (f.at(static_cast<int>(x), static_cast<int>(y)).r > 128) mask |= 1 << s;
+    }
+    const int* d = std::find(std::begin(kMask), std::end(kMask), mask);
+    out += d == std::end(kMask) ? '?' : static_cast<char>('0' + (d - kMask));
+  }
+  return out;
+}
+
+TEST(TestPattern, CounterShowsTheFramesPresented) {
+  // Large enough that each segment is several pixels thick.
+  constexpr int w = 640, h = 360;
+  test::RenderHarness pattern(kScene, w, h);
+  pattern.run(1);  // the first frame: none presented before it
+  EXPECT_EQ(read_counter(pattern.read(), h), "00000000");
+  pattern.run(128);
+  EXPECT_EQ(read_counter(pattern.read(), h), "00000128");
 }
 
 TEST(TestPattern, BorderIsWhiteOnEveryEdge) {
