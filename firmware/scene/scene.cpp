@@ -20,7 +20,10 @@ void prepare_scene(SceneDesc& desc, uint64_t seed_override) {
 }
 
 Scene::Scene(const SceneDesc& desc, uint64_t seed_override, const std::atomic<bool>* stop)
-    : background_(desc.background), camera_(desc.camera), wind_(desc.wind) {
+    : background_(desc.background),
+      camera_(desc.camera),
+      wind_(desc.wind),
+      scaled_(desc.render_scale, desc.render_max_height) {
   for (size_t i = 0; i < desc.elements.size(); ++i) {
     if (stop && stop->load(std::memory_order_relaxed)) break;  // SIGTERM: do not make the rest
     const auto& e = desc.elements[i];
@@ -75,6 +78,15 @@ void Scene::draw(FrameContext& frame) {
   GLint screen = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &screen);
   frame.screen_framebuffer = static_cast<uint32_t>(screen);
+  // Drawn at a reduced size: the elements see the reduced target as their
+  // screen, and it is scaled up onto the real one at the end.
+  const RenderSize full{frame.width, frame.height};
+  const RenderSize drawn = scaled_.active() ? scaled_.size_for(full) : full;
+  if (drawn != full) {
+    frame.screen_framebuffer = scaled_.begin(drawn);
+    frame.width = drawn.width;
+    frame.height = drawn.height;
+  }
   // 1. Offscreen work, 2. the screen, 3. the passes (scene/element.h).
   for (auto& e : elements_) e->prepare(frame);
   resources_.prepare(frame);
@@ -85,6 +97,14 @@ void Scene::draw(FrameContext& frame) {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   for (DrawPass pass : kAllPasses)
     for (auto& e : elements_) e->draw(frame, pass);
+  if (drawn != full) {
+    frame.screen_framebuffer = static_cast<uint32_t>(screen);
+    frame.width = full.width;
+    frame.height = full.height;
+    glBindFramebuffer(GL_FRAMEBUFFER, frame.screen_framebuffer);
+    glViewport(0, 0, full.width, full.height);
+    scaled_.finish();
+  }
 }
 
 int Scene::candles_lit() const {

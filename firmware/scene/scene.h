@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "scene/element.h"
+#include "scene/scaled_render.h"
 #include "scene/scene_file.h"
 #include "wind/wind_field.h"
 
@@ -45,6 +46,7 @@ class Scene {
   Vec3 background_;
   CameraDesc camera_;
   WindField wind_;
+  ScaledRender scaled_;       // [display] render_scale / render_max_height
   SceneResources resources_;  // before elements_: outlives every element
   std::vector<std::unique_ptr<Element>> elements_;
   size_t failed_ = 0;

@@ -30,6 +30,11 @@ SceneDesc load_scene_text(std::string_view text, const std::string& name,
         display.fail(k, "expected at least 16 pixels (as --size), got " + std::to_string(v));
   scene.refresh_hz = static_cast<int>(display.integer("refresh", 0, 0, 1000));
   scene.steps_per_second = static_cast<int>(display.integer("steps_per_second", 60, 10, 1000));
+  scene.render_scale = static_cast<float>(display.number("render_scale", 1.0, 0.25, 1.0));
+  scene.render_max_height = static_cast<int>(display.integer("render_max_height", 0, 0, 16384));
+  if (scene.render_max_height > 0 && scene.render_max_height < 120)
+    display.fail("render_max_height", "expected 0 (no limit) or at least 120 rows, got " +
+                                          std::to_string(scene.render_max_height));
   display.finish();
 
   ParamReader bg = top.table("background");

@@ -30,6 +30,11 @@ struct SceneDesc {
   std::string file;  // path, or "<built-in NAME>"
   int width = 0, height = 0, refresh_hz = 0;
   int steps_per_second = 60;
+  // [display] render_scale, render_max_height: the scene drawn at a reduced
+  // size and scaled up to the screen (scene/scaled_render.h); 1 and 0: the
+  // screen's size.
+  float render_scale = 1.0f;
+  int render_max_height = 0;
   uint64_t seed = 1;
   Vec3 background{0.02f, 0.015f, 0.012f};
   CameraDesc camera;

@@ -1,5 +1,7 @@
 // Scene files: every kind of bad input gets a message naming the file, the
 // key and what was expected.
+#include "scene/scene_file.h"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -8,7 +10,6 @@
 
 #include "core/error.h"
 #include "scene/scene.h"
-#include "scene/scene_file.h"
 
 namespace candela {
 namespace {
@@ -159,6 +160,38 @@ TEST(SceneConfig, DegenerateCameraAndDisplayAreRefused) {
   EXPECT_EQ(error_of("[display]\nwidth = 640\nheight = 8\n").key(), "display.height");
   // Looking down steeply but not straight down is fine.
   EXPECT_NO_THROW(load_scene_text("[camera]\nposition = [0, 2, 0.1]\ntarget = [0, 0, 0]\n", "ok"));
+}
+
+TEST(SceneConfig, ReducedRenderSizeIsBounded) {
+  const SceneDesc s =
+      load_scene_text("[display]\nrender_scale = 0.5\nrender_max_height = 540\n", "ok.toml");
+  EXPECT_FLOAT_EQ(s.render_scale, 0.5f);
+  EXPECT_EQ(s.render_max_height, 540);
+  const SceneDesc plain = load_scene_text("", "plain.toml");
+  EXPECT_FLOAT_EQ(plain.render_scale, 1.0f);  // the screen's size unless asked
+  EXPECT_EQ(plain.render_max_height, 0);
+  for (const char* bad : {"render_scale = 0.1", "render_scale = 2", "render_scale = \"half\""}) {
+    SCOPED_TRACE(bad);
+    const auto e = error_of(std::string("[display]\n") + bad + "\n");
+    EXPECT_EQ(e.key(), "display.render_scale");
+  }
+  const auto tiny = error_of("[display]\nrender_max_height = 50\n");
+  EXPECT_EQ(tiny.key(), "display.render_max_height");
+  EXPECT_NE(tiny.expected().find("120"), std::string::npos) << tiny.what();
+  EXPECT_EQ(error_of("[display]\nrender_max_height = -1\n").key(), "display.render_max_height");
+}
+
+// The size a scene is drawn at: the tighter of the scale and the row limit,
+// the screen's aspect kept, never above the screen's size.
+TEST(ScaledRender, SizeIsTheTighterLimit) {
+  EXPECT_EQ(scaled_render_size({1920, 1080}, 1.0f, 540), (RenderSize{960, 540}));
+  EXPECT_EQ(scaled_render_size({1280, 720}, 1.0f, 540), (RenderSize{960, 540}));
+  EXPECT_EQ(scaled_render_size({640, 360}, 1.0f, 540), (RenderSize{640, 360}));
+  EXPECT_EQ(scaled_render_size({1920, 1080}, 0.5f, 0), (RenderSize{960, 540}));
+  EXPECT_EQ(scaled_render_size({3840, 2160}, 0.5f, 720), (RenderSize{1280, 720}));
+  EXPECT_EQ(scaled_render_size({1920, 1080}, 0.25f, 720), (RenderSize{480, 270}));
+  EXPECT_EQ(scaled_render_size({800, 600}, 1.0f, 0), (RenderSize{800, 600}));
+  EXPECT_EQ(scaled_render_size({3, 2}, 0.25f, 0), (RenderSize{1, 1}));
 }
 
 TEST(SceneConfig, WindDirectionIsOnlyADirection) {

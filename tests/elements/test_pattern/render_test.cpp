@@ -97,6 +97,29 @@ TEST(TestPattern, CounterShowsTheFramesPresented) {
   EXPECT_EQ(read_counter(pattern.read(), h), "00000128");
 }
 
+// [display] render_scale: the scene is drawn at half the size and scaled up
+// to fill the screen. The pattern's one-pixel border, drawn in the half-size
+// target, covers two screen pixels; the bars are where they were.
+TEST(TestPattern, ReducedRenderSizeFillsTheScreen) {
+  const std::string half = std::string("[display]\nrender_scale = 0.5\n") + kScene;
+  test::RenderHarness h(half, kW, kH);
+  h.run(1);
+  const test::Frame f = h.read();
+  ASSERT_EQ(f.width, kW);
+  ASSERT_EQ(f.height, kH);
+  // Inside the black bar, one pixel in from the right edge: the border's
+  // second screen pixel (a full-size frame has black there, see below).
+  EXPECT_GT(f.at(kW - 2, kH / 3).r, 150);
+  EXPECT_LT(f.at(kW - 5, kH / 3).r, 20);
+  const int expected[8][3] = {{255, 255, 255}, {255, 255, 0}, {0, 255, 255}, {0, 255, 0},
+                              {255, 0, 255},   {255, 0, 0},   {0, 0, 255},   {0, 0, 0}};
+  for (int i = 0; i < 8; ++i) {
+    SCOPED_TRACE(i);
+    expect_near(f.at(kW * (2 * i + 1) / 16, kH / 3), expected[i][0], expected[i][1],
+                expected[i][2]);
+  }
+}
+
 TEST(TestPattern, BorderIsWhiteOnEveryEdge) {
   test::RenderHarness h(kScene, kW, kH);
   h.run(1);
