@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "app/heap_tuning.h"
 #include "app/options.h"
 #include "app/run_candela.h"
 #include "app/signals.h"
@@ -16,6 +17,7 @@
 
 int main(int argc, char** argv) {
   using namespace candela;
+  keep_freed_heap_memory();
   Options opt;
   if (int rc = parse_options(argc, argv, opt); rc >= 0) return rc;
   static const char* const kLevels[] = {"debug", "info", "warn", "error"};
