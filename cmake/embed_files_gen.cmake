@@ -3,6 +3,8 @@
 # 9 MB of built-in models compile in a moment), each followed by a 0 byte,
 # and a lookup by base name. The sizes are written here; the files' contents
 # are the object's dependencies (EmbedFiles.cmake: OBJECT_DEPENDS).
+# Each starts 64-byte aligned, as a model file's tensors must be (a built-in
+# model is read in place: model::ModelFile::from_static).
 string(REPLACE "|" ";" FILES "${FILES}")
 set(asm "")
 set(table "")
@@ -15,7 +17,7 @@ foreach(f ${FILES})
   endif()
   file(SIZE ${f} bytes)
   set(sym "candela_embed_${TAG}_${i}")
-  string(APPEND asm "    \".globl ${sym}\\n.hidden ${sym}\\n.balign 16\\n${sym}:\\n.incbin \\\"${f}\\\"\\n.byte 0\\n\"\n")
+  string(APPEND asm "    \".globl ${sym}\\n.hidden ${sym}\\n.balign 64\\n${sym}:\\n.incbin \\\"${f}\\\"\\n.byte 0\\n\"\n")
   string(APPEND decls "extern \"C\" const char ${sym}[];\n")
   string(APPEND table "    {\"${name}\", {${sym}, ${bytes}}},\n")
   math(EXPR i "${i} + 1")

@@ -61,7 +61,8 @@ const char* to_string(ModelError::Kind k) {
   return "?";
 }
 
-// Either a private, page-aligned copy of a file (anonymous memory) or an owned buffer.
+// A private, page-aligned copy of a file (anonymous memory), an owned buffer
+// or bytes the program holds for its whole run (neither `map` nor `owned`).
 struct ModelFile::Storage {
   const uint8_t* data = nullptr;
   size_t size = 0;
@@ -143,6 +144,13 @@ ModelFile ModelFile::open(const std::string& path) {
     mprotect(m, storage->size, PROT_READ);  // read-only from here, as a mapping was
   }
   return parse(std::move(storage), path);
+}
+
+ModelFile ModelFile::from_static(std::string_view bytes, const std::string& name) {
+  auto storage = std::make_shared<Storage>();
+  storage->data = reinterpret_cast<const uint8_t*>(bytes.data());
+  storage->size = bytes.size();
+  return parse(std::move(storage), name);
 }
 
 ModelFile ModelFile::from_bytes(std::vector<uint8_t> bytes, const std::string& name) {

@@ -73,6 +73,9 @@ class ModelFile {
   static ModelFile open(const std::string& path);
   // The same checks on a buffer in memory (tests, fuzzing); `name` is used in errors.
   static ModelFile from_bytes(std::vector<uint8_t> bytes, const std::string& name);
+  // The same checks on bytes that live as long as the program (a model built
+  // into the binary), read in place: no copy. At least 4-byte aligned.
+  static ModelFile from_static(std::string_view bytes, const std::string& name);
 
   const std::string& path() const { return path_; }
   int version() const { return version_; }

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <string_view>
 
 #include "model/flame_model.h"
 #include "model/model_writer.h"
@@ -183,6 +184,32 @@ TEST(ModelFile, OverwritingTheFileLeavesALoadedModelIntact) {
     EXPECT_EQ(0, std::memcmp(u->data, t.data, t.bytes)) << t.name;
   }
   std::remove(path.c_str());
+}
+
+// A model built into the binary is read where it lies (no copy of its
+// megabytes), with the same checks as a file.
+TEST(ModelFile, StaticBytesAreReadInPlace) {
+  const std::vector<uint8_t> bytes = small_model().bytes();
+  alignas(cm::kAlignment) static uint8_t held[1 << 16];
+  ASSERT_LE(bytes.size(), sizeof held);
+  std::memcpy(held, bytes.data(), bytes.size());
+  const std::string_view view(reinterpret_cast<const char*>(held), bytes.size());
+  const cm::ModelFile f = cm::ModelFile::from_static(view, "<built-in small>");
+  ASSERT_FALSE(f.tensors().empty());
+  for (const auto& t : f.tensors()) {
+    EXPECT_GE(t.data, held) << t.name;
+    EXPECT_LE(t.data + t.bytes, held + bytes.size()) << t.name;
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(t.data) % cm::kAlignment, 0u) << t.name;
+  }
+  EXPECT_EQ(cm::FlameModel::from(f).frames(), 5);
+  // Cut short, it is refused as a file would be, naming where it came from.
+  try {
+    (void)cm::ModelFile::from_static(view.substr(0, bytes.size() / 2), "<built-in small>");
+    ADD_FAILURE() << "a truncated built-in model loaded";
+  } catch (const cm::ModelError& e) {
+    EXPECT_EQ(e.kind(), Kind::kTruncated);
+    EXPECT_NE(std::string(e.what()).find("<built-in small>"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ModelFile, TruncationIsReported) {

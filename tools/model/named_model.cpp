@@ -16,8 +16,7 @@ model::FlameModel load_named_model(const std::string& name_or_path) {
   if (bytes.empty())
     throw ConfigError("<built-in models>", name_or_path,
                       "no such built-in model (built in: builtin:candle, builtin:fire)");
-  return model::FlameModel::from(model::ModelFile::from_bytes(
-      std::vector<uint8_t>(bytes.begin(), bytes.end()), "<built-in " + name + ">"));
+  return model::FlameModel::from(model::ModelFile::from_static(bytes, "<built-in " + name + ">"));
 }
 
 }  // namespace candela::tools

@@ -32,7 +32,11 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
     : width_(mean.width),
       height_(mean.height),
       components_(std::clamp(std::min(eigen.count, max_components), 0, kMaxComponents)),
-      entries_(components_ + 1),
+      // A 16-bit mean with 8-bit eigen-images: the mean as two 8-bit
+      // entries (high byte, low byte) rather than the whole stack widened to
+      // 16 bits, which doubled the fire model's texture (6 -> 12 MB).
+      mean_entries_(mean.u16 && !eigen.u16 ? 2 : 1),
+      entries_(components_ + mean_entries_),
       layers_(layout == StackLayout::kPacked ? (entries_ + 3) / 4 : entries_),
       layered_(layout == StackLayout::kLayered),
       mean_scale_(mean.scale[0]),
@@ -41,7 +45,7 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
       eigen_offset_(eigen.offset) {
   if (mean.width != eigen.width || mean.height != eigen.height || width_ < 1 || height_ < 1)
     throw RuntimeError("eigenflame: mean and eigen-images differ in size");
-  const bool wide = mean.u16 || eigen.u16;
+  const bool wide = eigen.u16 || (mean.u16 && mean_entries_ == 1);
   const int channels = layout == StackLayout::kPacked ? 4 : 1;
   const size_t px = static_cast<size_t>(width_) * height_;
   // Pixel-major where the GPU's limits allow: the texture's layer is the
@@ -54,36 +58,56 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
   pixel_major_ = layers_ <= max_size && width_ <= max_size && height_ <= max_layers;
-  // Raw quantised values, entry 0 the mean, widened to 16 bits if either set is.
-  std::vector<uint16_t> wide_data;
-  std::vector<uint8_t> narrow_data;
-  (wide ? wide_data.resize(px * channels * layers_) : narrow_data.resize(px * channels * layers_));
-  for (int e = 0; e < entries_; ++e) {
-    const int layer = channels == 4 ? e / 4 : e, ch = channels == 4 ? e % 4 : 0;
-    for (size_t p = 0; p < px; ++p) {
-      const uint32_t v = e == 0 ? raw_at(mean, 0, p) : raw_at(eigen, e - 1, p);
-      const size_t at =
-          (pixel_major_ ? p * static_cast<size_t>(layers_) + static_cast<size_t>(layer)
-                        : static_cast<size_t>(layer) * px + p) *
-              channels +
-          ch;
-      if (wide)
-        wide_data[at] = static_cast<uint16_t>(v);
-      else
-        narrow_data[at] = static_cast<uint8_t>(v);
-    }
-  }
-  stack_ = make_texture();
-  glBindTexture(GL_TEXTURE_2D_ARRAY, stack_.get());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  // Raw quantised values, the mean's entries first, widened to 16 bits if
+  // the eigen-images are, uploaded one slice at a time (an image row pixel-major, a layer
+  // otherwise): the whole stack widened at once was a second copy of the
+  // model's images in memory at load (13 MB for the fire model).
+  const int tex_w = pixel_major_ ? layers_ : width_, tex_h = pixel_major_ ? width_ : height_;
+  const int tex_d = pixel_major_ ? height_ : layers_;
   const GLenum internal =
       channels == 4 ? (wide ? GL_RGBA16UI : GL_RGBA8UI) : (wide ? GL_R16UI : GL_R8UI);
   const GLenum format = channels == 4 ? GL_RGBA_INTEGER : GL_RED_INTEGER;
-  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, static_cast<GLint>(internal),
-               pixel_major_ ? layers_ : width_, pixel_major_ ? width_ : height_,
-               pixel_major_ ? height_ : layers_, 0, format,
-               wide ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE,
-               wide ? static_cast<const void*>(wide_data.data()) : narrow_data.data());
+  stack_ = make_texture();
+  glBindTexture(GL_TEXTURE_2D_ARRAY, stack_.get());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexStorage3D(GL_TEXTURE_2D_ARRAY, 1, internal, tex_w, tex_h, tex_d);
+  const size_t slice = static_cast<size_t>(tex_w) * static_cast<size_t>(tex_h) * channels;
+  std::vector<uint16_t> wide_data(wide ? slice : 0);
+  std::vector<uint8_t> narrow_data(wide ? 0 : slice);
+  const auto put = [&](size_t at, uint32_t v) {
+    if (wide)
+      wide_data[at] = static_cast<uint16_t>(v);
+    else
+      narrow_data[at] = static_cast<uint8_t>(v);
+  };
+  const auto entry_at = [&](int e, size_t p) -> uint32_t {
+    if (e >= mean_entries_) return raw_at(eigen, e - mean_entries_, p);
+    const uint32_t m = raw_at(mean, 0, p);
+    return mean_entries_ == 1 ? m : e == 0 ? m >> 8 : m & 0xFFu;
+  };
+  for (int z = 0; z < tex_d; ++z) {
+    std::fill(wide_data.begin(), wide_data.end(), uint16_t{0});  // the last layer's unused channels
+    std::fill(narrow_data.begin(), narrow_data.end(), uint8_t{0});
+    if (pixel_major_) {  // slice z: image row z; texel (entry layer, x)
+      for (int e = 0; e < entries_; ++e) {
+        const int layer = channels == 4 ? e / 4 : e, ch = channels == 4 ? e % 4 : 0;
+        for (int x = 0; x < width_; ++x)
+          put((static_cast<size_t>(x) * static_cast<size_t>(layers_) + static_cast<size_t>(layer)) *
+                      channels +
+                  static_cast<size_t>(ch),
+              entry_at(e, static_cast<size_t>(z) * static_cast<size_t>(width_) + x));
+      }
+    } else {  // slice z: layer z, its entries' whole images
+      for (int ch = 0; ch < channels; ++ch) {
+        const int e = z * channels + ch;
+        if (e >= entries_) break;
+        for (size_t p = 0; p < px; ++p) put(p * channels + static_cast<size_t>(ch), entry_at(e, p));
+      }
+    }
+    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, z, tex_w, tex_h, 1, format,
+                    wide ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE,
+                    wide ? static_cast<const void*>(wide_data.data()) : narrow_data.data());
+  }
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 
@@ -124,16 +148,19 @@ void EigenReconstructor::draw_with(const ReconstructProgram& p, std::span<const 
   // From a cached frame (`base`, its weights), only the difference is summed:
   // the mean and every component past the last that differs add nothing.
   const int n = std::min(components_, static_cast<int>(weights.size()));
-  coef_[0] = base ? 0.0f : mean_scale_;
+  const float mean_coef = base ? 0.0f : mean_scale_;
+  coef_[0] = mean_entries_ == 2 ? mean_coef * 256.0f : mean_coef;  // the high byte
+  if (mean_entries_ == 2) coef_[1] = mean_coef;
   float bias = base ? 0.0f : mean_offset_;
-  int last = base ? 0 : components_;  // entries summed after the mean
+  int last = base ? 0 : components_;  // eigen-images summed
   for (int k = 0; k < components_; ++k) {
     const float w = (k < n ? weights[static_cast<size_t>(k)] : 0.0f) - (base ? base[k] : 0.0f);
-    coef_[static_cast<size_t>(k) + 1] = w * eigen_scale_[static_cast<size_t>(k)];
+    coef_[static_cast<size_t>(k + mean_entries_)] = w * eigen_scale_[static_cast<size_t>(k)];
     bias += w * eigen_offset_[static_cast<size_t>(k)];
     if (base && w != 0.0f) last = k + 1;
   }
-  const int layers = last == components_ ? layers_ : layered_ ? last + 1 : last / 4 + 1;
+  const int needed = last + mean_entries_;
+  const int layers = last == components_ ? layers_ : layered_ ? needed : (needed + 3) / 4;
   glViewport(x, y, width_, height_);
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);

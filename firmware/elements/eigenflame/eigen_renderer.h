@@ -99,7 +99,9 @@ class EigenReconstructor {
   // The shader's defines for this stack (its uniform array size, its layout).
   std::string program_defines() const;
 
-  int width_, height_, components_, entries_, layers_;
+  // The stack's entries: the mean (two: its high and low bytes, where a
+  // 16-bit mean goes with 8-bit eigen-images), then each eigen-image.
+  int width_, height_, components_, mean_entries_, entries_, layers_;
   bool layered_;
   bool pixel_major_ = false;  // the stack's texel (entry layer, x) in layer y (the constructor)
   ReconstructProgram full_, fill_, near_;

@@ -356,9 +356,9 @@ std::shared_ptr<const EigenModel> builtin_eigen_model(const std::string& name) {
       throw ConfigError("<built-in models>", name,
                         "no such built-in model (built in: default, candle, fire)");
     const std::string source = "<built-in " + file + ">";
-    std::vector<uint8_t> copy(bytes.begin(), bytes.end());
+    // Read where the binary holds it: a copy would cost the model's size again.
     auto m = std::make_shared<const model::FlameModel>(
-        model::FlameModel::from(model::ModelFile::from_bytes(std::move(copy), source)));
+        model::FlameModel::from(model::ModelFile::from_static(bytes, source)));
     slot = derive(std::move(m), source);
   }
   return slot;
