@@ -26,6 +26,14 @@ RenderTarget RenderTarget::checked(int width, int height, const std::string& wha
   return t;
 }
 
+Renderbuffer attach_depth_buffer(int width, int height) {
+  Renderbuffer depth = make_renderbuffer();
+  glBindRenderbuffer(GL_RENDERBUFFER, depth.get());
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth.get());
+  return depth;
+}
+
 void RenderTarget::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get()); }
 
 FramebufferRestore::FramebufferRestore() {

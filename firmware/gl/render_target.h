@@ -37,6 +37,10 @@ class RenderTarget {
   bool complete_ = false;
 };
 
+// A 24-bit depth renderbuffer of width x height, attached to the bound
+// framebuffer (whose completeness the caller checks once it is whole).
+Renderbuffer attach_depth_buffer(int width, int height);
+
 // Remembers the bound draw framebuffer and the viewport, and binds and sets
 // them again when it goes out of scope: for code that may be called with any
 // framebuffer bound (tools, tests; a scene's prepare stage re-binds the

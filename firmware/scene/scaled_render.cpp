@@ -19,10 +19,7 @@ RenderSize scaled_render_size(RenderSize screen, float scale, int max_height) {
 GLuint ScaledRender::begin(RenderSize size) {
   if (!target_ || size != size_) {
     target_ = RenderTarget::checked(size.width, size.height, "scene at a reduced size");
-    depth_ = make_renderbuffer();
-    glBindRenderbuffer(GL_RENDERBUFFER, depth_.get());
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, size.width, size.height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.get());
+    depth_ = attach_depth_buffer(size.width, size.height);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw RuntimeError("scene at a reduced size: framebuffer with depth incomplete");
     size_ = size;

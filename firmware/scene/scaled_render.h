@@ -2,8 +2,8 @@
 // fireplace's detail (flames from 128x160 model images, soft light) needs
 // far fewer pixels than a 1920x1080 screen has, and a Pi-class GPU (or
 // llvmpipe) pays for every pixel every pass: drawn at 960x540, the eigen
-// fireplace's passes cost a third of what they cost at 1920x1080, and one
-// pass scales the result up. A scene asks for it with [display]
+// fireplace's passes cost about two fifths of what they cost at 1920x1080,
+// and one pass scales the result up. A scene asks for it with [display]
 // render_scale and render_max_height (scene/scene_file.h); the elements do
 // not know: they draw into the reduced target as if it were the screen.
 #pragma once
@@ -27,8 +27,7 @@ RenderSize scaled_render_size(RenderSize screen, float scale, int max_height);
 class ScaledRender {
  public:
   ScaledRender(float scale, int max_height) : scale_(scale), max_height_(max_height) {}
-  // Whether this scene may be drawn reduced at all (no GL work otherwise).
-  bool active() const { return scale_ < 1.0f || max_height_ > 0; }
+  // The screen's own size where neither limit reduces it (then no GL work).
   RenderSize size_for(RenderSize screen) const {
     return scaled_render_size(screen, scale_, max_height_);
   }

@@ -81,7 +81,7 @@ void Scene::draw(FrameContext& frame) {
   // Drawn at a reduced size: the elements see the reduced target as their
   // screen, and it is scaled up onto the real one at the end.
   const RenderSize full{frame.width, frame.height};
-  const RenderSize drawn = scaled_.active() ? scaled_.size_for(full) : full;
+  const RenderSize drawn = scaled_.size_for(full);
   if (drawn != full) {
     frame.screen_framebuffer = scaled_.begin(drawn);
     frame.width = drawn.width;

@@ -45,7 +45,8 @@ EigenReconstructor::EigenReconstructor(const ImageStack& mean, const ImageStack&
       eigen_offset_(eigen.offset) {
   if (mean.width != eigen.width || mean.height != eigen.height || width_ < 1 || height_ < 1)
     throw RuntimeError("eigenflame: mean and eigen-images differ in size");
-  const bool wide = eigen.u16 || (mean.u16 && mean_entries_ == 1);
+  // 16-bit entries only for 16-bit eigen-images (a 16-bit mean alone is split).
+  const bool wide = eigen.u16;
   const int channels = layout == StackLayout::kPacked ? 4 : 1;
   const size_t px = static_cast<size_t>(width_) * height_;
   // Pixel-major where the GPU's limits allow: the texture's layer is the

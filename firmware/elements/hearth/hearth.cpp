@@ -9,6 +9,7 @@
 #include "core/flicker.h"
 #include "core/random.h"
 #include "gl/program.h"
+#include "gl/render_target.h"
 #include "gl/texture.h"
 #include "params/params.h"
 
@@ -423,17 +424,13 @@ class Hearth final : public Element {
     // split over two 8-bit channels by their shaders.
     log_colour_tex_ = make_cache_texture(GL_RGB10_A2, w, h);
     log_crack_tex_ = make_cache_texture(GL_RGBA8, w, h);
-    logs_depth_ = make_renderbuffer();
-    glBindRenderbuffer(GL_RENDERBUFFER, logs_depth_.get());
-    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, w, h);
     logs_fbo_ = make_framebuffer();
     glBindFramebuffer(GL_FRAMEBUFFER, logs_fbo_.get());
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                            log_colour_tex_.get(), 0);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
                            log_crack_tex_.get(), 0);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
-                              logs_depth_.get());
+    logs_depth_ = attach_depth_buffer(w, h);
     const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     glDrawBuffers(2, both);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
