@@ -11,8 +11,8 @@ the frames (.y4m, luma) are read back hour by hour. Per scene one line:
 A scene passes when, after warm-up (5 % of the run, at least 5 s):
 - RSS stays within --rss-mb of its first value, plus the frame statistics'
   buffer (16 bytes a frame, filled along the run: 1.3 MB for 24 h at --fps 1)
-  and 2 MB for the GL driver's pools, and within --rss-mb over the run's
-  second half (a leak keeps growing);
+  and 3 MB for the GL driver's pools, and within --rss-mb plus one 1 MB pool
+  step over the run's second half (a leak keeps growing);
 - the count of open files does not grow;
 - the frame time does not grow: measured from the output's growth in each
   eighth of the run, no eighth slower than 3x the fastest one before it
@@ -27,7 +27,7 @@ A scene passes when, after warm-up (5 % of the run, at least 5 s):
   a single repeat at an arbitrary lag needs the 15 fps check of
   tests/realism/no-repeats.sh (10 minutes).
 
-A benchmark script; a 15-minute version of the eigen fireplace runs in CI
+A benchmark script; a 1-hour version of the eigen fireplace runs in CI
 (ctest soak_eigen_fireplace_short, tests/bench/CMakeLists.txt). The long run:
 
   tests/bench/soak.py [--build build] [--hours 24] [--size 32x18] [--repeats] [--seed N] [SCENE.toml ...]
@@ -119,18 +119,22 @@ def read_luma(path):
     return data[: n * frame].reshape(n, frame)[:, 6 : 6 + w * h].reshape(n, h, w)
 
 
-# Mesa's llvmpipe grows its pools in 1 MB steps at times set by its threads'
-# scheduling: on a loaded machine, a run in three stepped up by 1-2 MB after
-# warm-up where the same run alone did not (glibc's arenas made no
-# difference). Up to this much once, then flat.
-DRIVER_STEPS_MB = 2.0
+# Mesa's llvmpipe (and the heap under it, never trimmed: app/heap_tuning)
+# grows its pools in 1 MB steps at times set by its threads' scheduling, up to
+# a high-water mark, then stays flat. On a loaded machine, a run in three
+# stepped up by 1-2 MB after warm-up where the same run alone did not; CI once
+# saw three steps between frames 340 and 680 of 900 (a machine drawing 100 a
+# second); a 6 h run with 16 llvmpipe threads grew 0.3 MB, the frame
+# statistics' fill. A leak grows with every frame, without a ceiling.
+DRIVER_STEPS_MB = 3.0
+DRIVER_STEP_MB = 1.0
 
 
 def rss_problems(warm, fill, rss_mb, end):
     """RSS after warm-up, [(time, MB)], judged: within rss_mb of its first
     value plus the frame statistics' fill (spread along the run, ending at
     `end`) and the driver's steps; and, because a leak keeps growing, within
-    rss_mb over the second half of the run."""
+    rss_mb and one driver step over the second half of the run."""
     t0, first = warm[0]
     beyond = [r - first - fill * (t - t0) / max(end - t0, 1e-9) for t, r in warm]
     moved = max(abs(b) for b in beyond)
@@ -139,8 +143,9 @@ def rss_problems(warm, fill, rss_mb, end):
     if moved > rss_mb + DRIVER_STEPS_MB:
         return [f"RSS moved {moved:.1f} MB beyond the frame statistics' {fill:.1f} MB "
                 f"(allowed: {rss_mb:.1f} + {DRIVER_STEPS_MB:.0f} for the GL driver's pools)"]
-    if late > rss_mb:
-        return [f"RSS still grew {late:.1f} MB in the second half of the run (a leak)"]
+    if late > rss_mb + DRIVER_STEP_MB:
+        return [f"RSS still grew {late:.1f} MB in the second half of the run (a leak; allowed: "
+                f"{rss_mb:.1f} + one {DRIVER_STEP_MB:.0f} MB step of the GL driver's pools)"]
     return []
 
 
@@ -278,11 +283,13 @@ def self_test():
            rss_problems([(x, 140.0 + (x > 10) + (x > 20)) for x in t], 0.0, 1.0, 100), [])
     expect("the frame statistics' 1.5 MB filled along the run",
            rss_problems([(x, 140.0 + 1.5 * x / 100) for x in t], 1.5, 1.0, 100), [])
-    expect("a leak of 3 MB along the run", len(rss_problems([(x, 140.0 + 0.03 * x) for x in t],
+    expect("three 1 MB steps mid-run, as once on CI (then flat)",
+           rss_problems([(x, 140.0 + (x > 35) + (x > 50) + (x > 60)) for x in t], 0.0, 1.0, 100), [])
+    expect("a leak of 5 MB along the run", len(rss_problems([(x, 140.0 + 0.05 * x) for x in t],
                                                             0.0, 1.0, 100)), 1)
-    expect("a leak of 1.5 MB in the second half", len(rss_problems(
-        [(x, 140.0 + 0.03 * max(0, x - 50)) for x in t], 0.0, 1.0, 100)), 1)
-    expect("a 4 MB jump", len(rss_problems([(x, 140.0 + 4 * (x > 30)) for x in t], 0.0, 1.0, 100)), 1)
+    expect("a leak of 2.5 MB in the second half", len(rss_problems(
+        [(x, 140.0 + 0.05 * max(0, x - 50)) for x in t], 0.0, 1.0, 100)), 1)
+    expect("a 5 MB jump", len(rss_problems([(x, 140.0 + 5 * (x > 30)) for x in t], 0.0, 1.0, 100)), 1)
     return 0 if ok else 1
 
 
