@@ -49,6 +49,7 @@ uniform vec3 u_tongue_scale;  // flame shading: unit space -> the tongue field's
 uniform vec3 u_tongue_offset; // its drift, rise and evolution, wrapped where the noise repeats
 uniform float u_tongue_roots; // how deep the gaps cut at the very base (separate roots)
 uniform float u_glow;        // flame shading: brightness of the glow around the flames
+uniform float u_cooling;     // flame shading: share of the heat lost from the bed's top to the tips
 uniform vec3 u_tongue_gap;    // x: how deep gaps between tongues cut (0: none); y: their width;
                               // z: the height above the base where they reach full depth
 
@@ -183,6 +184,10 @@ void main() {
       float sheet = clamp((density - u_sheet.x) / u_sheet.y, 0.0, 1.0);
       // Heat: the profile's straight colour (its luminance), hotter at the base.
       float heat = dot(c.rgb, vec3(0.299, 0.587, 0.114)) / max(c.a, 1.0 / 255.0);
+      // The gas cools as it rises: what the noise lifts high (tips, pieces
+      // that broke off) glows orange and dim, not white like the bed. The
+      // lookup's own heat cannot say so, as the noise moved it.
+      heat *= 1.0 - u_cooling * smoothstep(u_bound.z * 0.3, u_bound.z, p.y);
       hot += sheet * heat * ds;
       glow += smoothstep(0.0, u_sheet.x, c.a) * ds;
     }

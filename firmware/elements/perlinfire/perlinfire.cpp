@@ -60,6 +60,7 @@ struct FireSettings {
   float tongue_width = 0.2f;  // how wide those gaps are (of the field's |noise|)
   float tongue_roots = 0.0f;  // how deep the gaps cut at the base: 0 one bed, 1 separate roots
   float glow = 0.0f;          // brightness of the soft glow around the flames (sheets)
+  float cooling = 0.0f;  // how much the flames' heat falls from the bed's top to the tips (sheets)
   double tongue_stretch = 8;  // the tongue field's cells are this much taller than wide
   float tongue_base = 0.45f;  // the height (of the volume) where the gaps reach full depth
   Vec3 color{1, 1, 1};
@@ -327,6 +328,7 @@ class PerlinFire final : public Element {
     glUniform3fv(u_.tongue_offset, 1, tongue_offset_.data());
     glUniform1f(u_.glow, s_.glow);
     glUniform1f(u_.tongue_roots, s_.tongue_roots);
+    glUniform1f(u_.cooling, s_.cooling);
     glUniform3f(u_.tongue_gap, s_.tongue_gap, s_.tongue_width, s_.tongue_base);
     glUniform1f(u_.obstacle, s_.obstacle > 0 ? s_.obstacle : -1e9f);
     glUniform3f(u_.color, s_.color.x, s_.color.y, s_.color.z);
@@ -385,6 +387,7 @@ class PerlinFire final : public Element {
     u_.tongue_gap = u("u_tongue_gap");
     u_.glow = u("u_glow");
     u_.tongue_roots = u("u_tongue_roots");
+    u_.cooling = u("u_cooling");
     u_.composite_color = composite_.uniform("u_color");
     u_.image = composite_.uniform("u_image");
     u_.uv_per_pixel = composite_.uniform("u_uv_per_pixel");
@@ -483,7 +486,7 @@ class PerlinFire final : public Element {
     GLint mvp, box_min, box_max, camera, world_scale, noise_scale, step_length, max_steps, bound,
         octaves, weights, offset, flow_cs, time4, lean, displacement, turbulence_mean, intensity,
         obstacle, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble, ramp_here, slices,
-        tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, image, uv_per_pixel,
+        tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, cooling, image, uv_per_pixel,
         composite_color;
   };
 
@@ -578,6 +581,7 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.tongue_width = static_cast<float>(r.number("tongue_width", s.tongue_width, 0.01, 1));
   s.glow = static_cast<float>(r.number("glow", s.glow, 0, 1));
   s.tongue_roots = static_cast<float>(r.number("tongue_roots", s.tongue_roots, 0, 1));
+  s.cooling = static_cast<float>(r.number("cooling", s.cooling, 0, 1));
   s.tongue_stretch = r.number("tongue_stretch", s.tongue_stretch, 0.25, 32);
   s.tongue_base = static_cast<float>(r.number("tongue_base", s.tongue_base, 0.01, 1));
   s.speed = r.fixed("speed", s.speed.to_double(), 0, 10);

@@ -162,6 +162,32 @@ TEST(PerlinFire, ObstacleHidesTheBaseOfTheFire) {
   EXPECT_EQ(mean_luma(render(scene("obstacle_height = 0.3"), 4), base, 1), 0.0);
 }
 
+// Luma summed over the rows between two heights of the volume (fractions of
+// its height, through its centre), across the frame.
+double band_luma(const test::Frame& f, float from, float to) {
+  double sum = 0;
+  const int y0 = static_cast<int>(project({0, kSize.y * to, 0}).y);
+  const int y1 = static_cast<int>(project({0, kSize.y * from, 0}).y);
+  for (int y = std::max(y0, 0); y < std::min(y1, kH); ++y)
+    for (int x = 0; x < kW; ++x) sum += f.luma(x, y);
+  return sum;
+}
+
+TEST(PerlinFire, CoolingDimsTheRisenFlamesNotTheBed) {
+  // The same fire (one seed, one frame) with and without cooling: what rose
+  // high (tips, pieces that broke off) is dim, while the bed, below where
+  // cooling starts, keeps its light. A tall fire, as the fireplace's, without
+  // the dim envelope (which cooling leaves alone).
+  const std::string tall = "profile_height = 0.9\nintensity = 18\nglow = 0\n";
+  const test::Frame hot = render(scene(tall), 30, 5),
+                    cooled = render(scene(tall + "cooling = 1"), 30, 5);
+  const double hot_bed = band_luma(hot, 0.0f, 0.12f), hot_top = band_luma(hot, 0.6f, 1.0f);
+  ASSERT_GT(hot_bed, 0.0);
+  ASSERT_GT(hot_top, 0.02 * hot_bed) << "nothing up high to cool";
+  EXPECT_NEAR(band_luma(cooled, 0.0f, 0.12f) / hot_bed, 1.0, 0.02);
+  EXPECT_LT(band_luma(cooled, 0.6f, 1.0f), 0.5 * hot_top);
+}
+
 TEST(PerlinFire, AutoQualityUnderAnImpossibleBudgetSettlesAtTheFloor) {
   // 10000 fps: every frame is over budget, so the governor must walk the
   // whole ladder down (scale, steps, octaves) and stay at its last rung,
@@ -190,6 +216,12 @@ TEST(PerlinFire, BadSettingsNameTheKey) {
     FAIL() << "accepted render_scale = 2";
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "element[0].render_scale");
+  }
+  try {
+    load_scene_text(scene("cooling = 1.5"), "fire.toml");
+    FAIL() << "accepted cooling = 1.5";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "element[0].cooling");
   }
   try {
     load_scene_text(scene("profile = \"no-such-profile.png\""), "/tmp/fire.toml");
