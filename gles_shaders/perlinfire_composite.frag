@@ -10,12 +10,24 @@ precision highp float;
 uniform sampler2D u_image;    // PF_SHADING 0: premultiplied colour; 1: exposure
 uniform vec2 u_uv_per_pixel;  // screen pixel -> texture coordinate
 uniform vec3 u_color;         // the fire's tint (sheets)
+uniform float u_halo;         // sheets: the halo's strength (0: none)
+uniform float u_halo_lod;     // sheets: the mipmap level whose texels are the halo's blur
 out vec4 o_color;
 
 void main() {
   vec4 t = textureLod(u_image, gl_FragCoord.xy * u_uv_per_pixel, 0.0);
 #if PF_SHADING == 1
-  o_color = fire_ramp(t.r, t.g, u_color);
+  // The halo: a camera's lens and the hot air around a fire spread its
+  // brightest light softly around it (the real clips show it around every
+  // flame). The exposure blurred by its mipmaps, two levels mixed so the
+  // coarse level's texels do not show.
+  float g = t.g;
+  if (u_halo > 0.0) {
+    vec2 uv = gl_FragCoord.xy * u_uv_per_pixel;
+    float blur = 0.5 * (textureLod(u_image, uv, u_halo_lod).r + textureLod(u_image, uv, u_halo_lod + 1.0).r);
+    g = max(g, u_halo * blur);
+  }
+  o_color = fire_ramp(t.r, g, u_color);
 #else
   o_color = t;
 #endif

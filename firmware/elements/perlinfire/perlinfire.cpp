@@ -61,6 +61,7 @@ struct FireSettings {
   float tongue_roots = 0.0f;  // how deep the gaps cut at the base: 0 one bed, 1 separate roots
   float glow = 0.0f;          // brightness of the soft glow around the flames (sheets)
   float cooling = 0.0f;  // how much the flames' heat falls from the bed's top to the tips (sheets)
+  float halo = 0.0f;     // the camera's soft halo around bright flames (sheets, reduced scale)
   double tongue_stretch = 8;  // the tongue field's cells are this much taller than wide
   float tongue_base = 0.45f;  // the height (of the volume) where the gaps reach full depth
   Vec3 color{1, 1, 1};
@@ -146,6 +147,7 @@ class PerlinFire final : public Element {
                                   "\nprecision highp float;\n");
     vao_ = make_vertex_array();
     locate_uniforms();
+    halo_ = s.shading == FireShading::kSheets && s.halo > 0;
 
     const NoiseTables tables(seed);
     perm_ = make_table_texture(GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, tables.perm2d().data());
@@ -233,12 +235,25 @@ class PerlinFire final : public Element {
     // One texel past the part in use is cleared too: filtering reads it.
     const int x1 = std::min(target_.width(), static_cast<int>(std::ceil(rect_[2] * sx)) + 2);
     const int y1 = std::min(target_.height(), static_cast<int>(std::ceil(rect_[3] * sy)) + 2);
-    glScissor(x0, y0, x1 - x0, y1 - y0);
     glClearColor(0, 0, 0, 0);
+    // The halo reads the target blurred (its mipmaps): all of the part in
+    // use is cleared, as what an earlier frame left outside the box (the
+    // box moves with the lean) would show in it.
+    if (halo_)
+      glScissor(0, 0, std::min(target_.width(), sub_w_ + 2),
+                std::min(target_.height(), sub_h_ + 2));
+    else
+      glScissor(x0, y0, x1 - x0, y1 - y0);
     glClear(GL_COLOR_BUFFER_BIT);
+    glScissor(x0, y0, x1 - x0, y1 - y0);
     glDisable(GL_BLEND);
     march(f);
     glDisable(GL_SCISSOR_TEST);
+    if (halo_) {
+      glBindTexture(GL_TEXTURE_2D, target_.texture());
+      glGenerateMipmap(GL_TEXTURE_2D);
+      glBindTexture(GL_TEXTURE_2D, 0);
+    }
     glDepthMask(GL_TRUE);
     glActiveTexture(GL_TEXTURE0);
   }
@@ -253,6 +268,9 @@ class PerlinFire final : public Element {
       glUniform2f(u_.uv_per_pixel, static_cast<float>(sub_w_) / f.width / target_.width(),
                   static_cast<float>(sub_h_) / f.height / target_.height());
       glUniform3f(u_.composite_color, s_.color.x, s_.color.y, s_.color.z);
+      // The halo's blur: about 3% of the picture's height, whatever the scale.
+      glUniform1f(u_.halo, halo_ ? s_.halo : 0.0f);
+      glUniform1f(u_.halo_lod, std::log2(std::max(1.0f, 0.06f * static_cast<float>(sub_h_))));
       bind_texture(4, target_.texture(), u_.image);
       glDisable(GL_DEPTH_TEST);
       glDisable(GL_CULL_FACE);
@@ -391,6 +409,8 @@ class PerlinFire final : public Element {
     u_.composite_color = composite_.uniform("u_color");
     u_.image = composite_.uniform("u_image");
     u_.uv_per_pixel = composite_.uniform("u_uv_per_pixel");
+    u_.halo = composite_.uniform("u_halo");
+    u_.halo_lod = composite_.uniform("u_halo_lod");
   }
 
   static void bind_texture(int unit, GLuint texture, GLint location) {
@@ -420,6 +440,12 @@ class PerlinFire final : public Element {
                            std::max(1, static_cast<int>(std::ceil(h * top))));
     if (!target_.complete())
       LOG_ERROR("perlinfire: offscreen target %dx%d incomplete", target_.width(), target_.height());
+    if (halo_) {  // blurred reads: trilinear, up to the level a 4K screen's halo needs
+      glBindTexture(GL_TEXTURE_2D, target_.texture());
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 6);
+      glBindTexture(GL_TEXTURE_2D, 0);
+    }
   }
 
   // The box's pixels on screen (x0, y0, x1, y1; GL's bottom-left origin), a
@@ -487,7 +513,7 @@ class PerlinFire final : public Element {
         octaves, weights, offset, flow_cs, time4, lean, displacement, turbulence_mean, intensity,
         obstacle, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble, ramp_here, slices,
         tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, cooling, image, uv_per_pixel,
-        composite_color;
+        composite_color, halo, halo_lod;
   };
 
   FireSettings s_;
@@ -507,6 +533,7 @@ class PerlinFire final : public Element {
   Mat4 mvp_;
   int rect_[4] = {0, 0, 0, 0};
   bool visible_ = false, offscreen_ = false;
+  bool halo_ = false;  // sheets with a halo: the offscreen target gets mipmaps
   int sub_w_ = 1, sub_h_ = 1;
   std::array<float, kMaxOctaves> weights_{}, time4_{};
   std::array<float, kMaxOctaves * 3> offsets_{};
@@ -582,6 +609,7 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.glow = static_cast<float>(r.number("glow", s.glow, 0, 1));
   s.tongue_roots = static_cast<float>(r.number("tongue_roots", s.tongue_roots, 0, 1));
   s.cooling = static_cast<float>(r.number("cooling", s.cooling, 0, 1));
+  s.halo = static_cast<float>(r.number("halo", s.halo, 0, 1));
   s.tongue_stretch = r.number("tongue_stretch", s.tongue_stretch, 0.25, 32);
   s.tongue_base = static_cast<float>(r.number("tongue_base", s.tongue_base, 0.01, 1));
   s.speed = r.fixed("speed", s.speed.to_double(), 0, 10);

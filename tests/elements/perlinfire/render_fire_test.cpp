@@ -188,6 +188,39 @@ TEST(PerlinFire, CoolingDimsTheRisenFlamesNotTheBed) {
   EXPECT_LT(band_luma(cooled, 0.6f, 1.0f), 0.5 * hot_top);
 }
 
+TEST(PerlinFire, HaloLightsTheDarkAroundTheFlamesOnly) {
+  // The same fire with and without the halo (at a reduced scale, where it is
+  // drawn): pixels that were dark beside the flames take a dim warm light;
+  // the flames themselves keep their colour; nothing is drawn outside the box.
+  const std::string base = "glow = 0\nrender_scale = 0.5\n";
+  const test::Frame plain = render(scene(base), 30, 5),
+                    halo = render(scene(base + "halo = 1"), 30, 5);
+  int r[4];
+  box_rect(2, r);
+  int newly_lit = 0, flames = 0, flames_changed = 0, outside = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) {
+      const test::Rgba a = plain.at(x, y), b = halo.at(x, y);
+      const bool inside = x >= r[0] && x <= r[2] && y >= r[1] && y <= r[3];
+      if (!inside) {
+        outside += b.r + b.g + b.b > 0;
+        continue;
+      }
+      if (plain.luma(x, y) < 2 && halo.luma(x, y) >= 6) {
+        ++newly_lit;
+        EXPECT_GT(b.r, b.b) << "a halo pixel is not warm at " << x << "," << y;
+      }
+      if (plain.luma(x, y) > 150) {
+        ++flames;
+        flames_changed += std::abs(a.r - b.r) + std::abs(a.g - b.g) + std::abs(a.b - b.b) > 3;
+      }
+    }
+  EXPECT_EQ(outside, 0);
+  EXPECT_GT(newly_lit, 40);
+  ASSERT_GT(flames, 20);
+  EXPECT_LT(flames_changed, flames / 10);
+}
+
 TEST(PerlinFire, AutoQualityUnderAnImpossibleBudgetSettlesAtTheFloor) {
   // 10000 fps: every frame is over budget, so the governor must walk the
   // whole ladder down (scale, steps, octaves) and stay at its last rung,
