@@ -236,12 +236,12 @@ class PerlinFire final : public Element {
     const int x1 = std::min(target_.width(), static_cast<int>(std::ceil(rect_[2] * sx)) + 2);
     const int y1 = std::min(target_.height(), static_cast<int>(std::ceil(rect_[3] * sy)) + 2);
     glClearColor(0, 0, 0, 0);
-    // The halo reads the target blurred (its mipmaps): all of the part in
-    // use is cleared, as what an earlier frame left outside the box (the
-    // box moves with the lean) would show in it.
+    // The halo reads the target blurred (its mipmaps), whose coarse texels
+    // reach past the part in use: the whole target is cleared, as what an
+    // earlier frame left outside the box (it moves with the lean) or at a
+    // larger scale (automatic quality) would show in the halo.
     if (halo_)
-      glScissor(0, 0, std::min(target_.width(), sub_w_ + 2),
-                std::min(target_.height(), sub_h_ + 2));
+      glScissor(0, 0, target_.width(), target_.height());
     else
       glScissor(x0, y0, x1 - x0, y1 - y0);
     glClear(GL_COLOR_BUFFER_BIT);
