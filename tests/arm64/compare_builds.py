@@ -19,8 +19,12 @@ scene identical at every checkpoint, and the saved frames alike:
   frame): each of the ray march's samples is cut at the sheets' density
   threshold, so a 1-2 LSB texel difference moves an edge by a pixel along
   every tongue; measured 16.6-19.1% of the pixels beyond 2 LSB, mean
-  1.03-1.22 LSB, max 22 LSB. There at most --loose-share (25%) and a mean of
-  1.5 LSB, the same --max.
+  1.03-1.22 LSB, max 22 LSB. Its halo (the exposure read blurred through
+  the offscreen target's mipmaps, more texel reads) spreads those texel
+  differences as a dim light over the area around the flames: measured
+  25.0-29.7% beyond 2 LSB, mean 1.51-1.81 LSB, max 16 LSB, with the
+  animation state's hash identical. There at most --loose-share (35%) and a
+  mean of 2 LSB, the same --max.
 
 Exit 0: they agree; 1: they differ (every difference is named); 2: a run
 failed.
@@ -78,8 +82,8 @@ def main():
                     help="comma-separated scenes held to --tolerance on every pixel")
     ap.add_argument("--share", type=float, default=0.15)
     ap.add_argument("--loose", default="perlin-fireplace",
-                    help="comma-separated scenes held to --loose-share and a mean of 1.5 LSB")
-    ap.add_argument("--loose-share", type=float, default=0.25)
+                    help="comma-separated scenes held to --loose-share and a mean of 2 LSB")
+    ap.add_argument("--loose-share", type=float, default=0.35)
     ap.add_argument("--max", type=int, default=32)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--out", required=True)
@@ -130,7 +134,7 @@ def main():
                 rule = f"every pixel within {args.tolerance} LSB"
             else:
                 loose = scene in args.loose.split(",")
-                share, mean_max = (args.loose_share, 1.5) if loose else (args.share, 1.0)
+                share, mean_max = (args.loose_share, 2.0) if loose else (args.share, 1.0)
                 ok = beyond <= share and mean <= mean_max and worst <= args.max
                 rule = (f"at most {share:.0%} beyond {args.tolerance} LSB, mean <= {mean_max:g}, "
                         f"max <= {args.max}")
