@@ -15,7 +15,8 @@ uniform float u_halo_lod;     // sheets: the mipmap level whose texels are the h
 out vec4 o_color;
 
 void main() {
-  vec4 t = textureLod(u_image, gl_FragCoord.xy * u_uv_per_pixel, 0.0);
+  vec2 uv = gl_FragCoord.xy * u_uv_per_pixel;
+  vec4 t = textureLod(u_image, uv, 0.0);
 #if PF_SHADING == 1
   // The halo: a camera's lens and the hot air around a fire spread its
   // brightest light softly around it (the real clips show it around every
@@ -23,8 +24,8 @@ void main() {
   // coarse level's texels do not show.
   float g = t.g;
   if (u_halo > 0.0) {
-    vec2 uv = gl_FragCoord.xy * u_uv_per_pixel;
-    float blur = 0.5 * (textureLod(u_image, uv, u_halo_lod).r + textureLod(u_image, uv, u_halo_lod + 1.0).r);
+    float blur = 0.5 * (textureLod(u_image, uv, u_halo_lod).r +
+                        textureLod(u_image, uv, u_halo_lod + 1.0).r);
     g = max(g, u_halo * blur);
   }
   o_color = fire_ramp(t.r, g, u_color);

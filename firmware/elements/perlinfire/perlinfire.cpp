@@ -268,7 +268,7 @@ class PerlinFire final : public Element {
       glUniform2f(u_.uv_per_pixel, static_cast<float>(sub_w_) / f.width / target_.width(),
                   static_cast<float>(sub_h_) / f.height / target_.height());
       glUniform3f(u_.composite_color, s_.color.x, s_.color.y, s_.color.z);
-      // The halo's blur: about 3% of the picture's height, whatever the scale.
+      // The halo's blur: about 6% of the picture's height, whatever the scale.
       glUniform1f(u_.halo, halo_ ? s_.halo : 0.0f);
       glUniform1f(u_.halo_lod, std::log2(std::max(1.0f, 0.06f * static_cast<float>(sub_h_))));
       bind_texture(4, target_.texture(), u_.image);
