@@ -62,7 +62,7 @@ void main() {
     float streaks = fbm(vec2(v_wall.x * 6.0, v_wall.y * 1.5));
     soot = smoothstep(0.05, 0.5, v_wall.y) * (1.0 - smoothstep(0.4, 1.2, across + 0.5 * streaks)) +
            0.3 * smoothstep(0.3, 1.0, v_wall.y) * streaks;
-    soot = clamp(soot * u_soot * (0.7 + 0.5 * streaks), 0.0, 0.7);
+    soot = clamp(soot * u_soot * (0.7 + 0.5 * streaks), 0.0, 0.85);
     colour = mix(colour, vec3(0.035, 0.03, 0.028) * (0.7 + 0.6 * grain), soot);
   }
   // The fire's light: three points along its width, each falling off with distance.
@@ -72,8 +72,11 @@ void main() {
     vec3 to = u_light_pos + vec3(float(i) * u_spread, 0.0, 0.0) - v_world;
     float d2 = dot(to, to);
     // A flame is near: the light falls off fast (inverse square, softened
-    // within a flame's size), so the corners of the box stay dim.
-    float l = max(dot(n, to * inversesqrt(max(d2, 1e-6))), 0.0) * 0.06 / (0.03 + d2);
+    // within a flame's size), and faster still beyond about half a metre (the
+    // logs and the flames' own smoke shade it), so the box is lit around the
+    // fire and dark at its far corners, as in real footage, not evenly.
+    float l = max(dot(n, to * inversesqrt(max(d2, 1e-6))), 0.0) * 0.06 / (0.03 + d2) *
+              exp(-2.5 * max(d2 - 0.2, 0.0));
     total += l;
     left += i < 0 ? l : (i == 0 ? 0.5 * l : 0.0);
   }

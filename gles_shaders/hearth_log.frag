@@ -63,9 +63,11 @@ void main() {
     float across = fbm(vec2(q.x * 1.2 + 5.0, q.y * 3.5));  // plates break along the log
     float plate = smoothstep(0.35, 0.75, fissure) * smoothstep(0.2, 0.45, across);
     float rough = fbm(q * vec2(11.0, 4.0) + 3.0);  // the plates' own texture
-    // Weathered bark is grayer than the wood beneath it.
+    // Weathered bark is grayer than the wood beneath it. The plates stand
+    // out little: in a fireplace's light bark reads as dark and rough; plates
+    // twice as bright as their fissures read as painted planks.
     vec3 bark = mix(u_bark, vec3(dot(u_bark, vec3(0.3, 0.5, 0.2))), 0.35);
-    colour = bark * (0.08 + 1.15 * plate * (0.55 + 0.9 * rough));
+    colour = bark * (0.2 + 0.6 * plate * (0.6 + 0.8 * rough));
     colour += vec3(0.05, 0.047, 0.04) * smoothstep(0.72, 0.95, noise(q * vec2(3.0, 0.8) + 41.0)) * plate;
     // Char: where the fire reaches (up, and towards the light) and along the
     // underside that lies on the coals, with a ragged edge.
@@ -82,20 +84,22 @@ void main() {
     // Under firelight a strong dome made the blocks read as cobbles: the
     // relief is kept faint, the seams narrow.
     float dome = smoothstep(0.0, 0.15, cell.x);
-    vec3 char_colour = vec3(0.045, 0.038, 0.033) * (0.7 + 0.5 * cell.y) * (0.45 + 0.55 * dome);
-    // White-grey ash on some blocks' crowns, most where the fire is hottest.
+    vec3 char_colour = vec3(0.045, 0.038, 0.033) * (0.85 + 0.3 * cell.y) * (0.7 + 0.3 * dome);
+    // Grey ash on some blocks' crowns, most where the fire is hottest; dull,
+    // as pale crowns on every block read as cobblestones.
     float ash = smoothstep(0.55, 0.9, cell.y + 0.3 * above) * smoothstep(0.1, 0.4, cell.x) *
                 smoothstep(0.4, 0.7, noise(q * vec2(6.0, 16.0) + 7.0));
-    char_colour = mix(char_colour, vec3(0.32, 0.3, 0.28) * (0.7 + 0.3 * rough), 0.8 * ash);
+    char_colour = mix(char_colour, vec3(0.2, 0.19, 0.18) * (0.7 + 0.3 * rough), 0.5 * ash);
     colour = mix(colour, char_colour, char_amount);
-    // Cracks between the blocks glow, hottest underneath and where the fire
-    // licks; not every crack at once.
-    // Only some blocks' borders glow, and those in broken runs, so the glow
-    // reads as embers in the deepest fissures, not as a drawn network; a
-    // crack is a soft, hot seam a little wider than the char's dark gap.
-    float crack = smoothstep(0.12, 0.0, cell.x) * char_amount;
-    crack *= smoothstep(0.55, 0.85, cell.y);
-    crack *= smoothstep(0.4, 0.65, fbm(q * vec2(2.0, 6.0) + 23.0));
+    // Cracks between the blocks glow where the fire licks (the underside's
+    // glow is hearth_log_shade.frag's); not every crack at once.
+    // Only a few blocks' borders glow, and those in broken runs, so the glow
+    // reads as embers in the deepest fissures, not as a drawn network or as
+    // sparkles scattered over the log; a crack is a soft, hot seam wider than
+    // the char's dark gap.
+    float crack = smoothstep(0.2, 0.0, cell.x) * char_amount;
+    crack *= smoothstep(0.7, 0.9, cell.y);
+    crack *= smoothstep(0.5, 0.7, fbm(q * vec2(2.0, 6.0) + 23.0)) * smoothstep(0.35, 0.8, above);
     // 16 bits over two channels: the glow is bright, 8 would band it.
     float hi = floor(crack * 255.0) / 255.0;
     o_crack = vec4(hi, (crack - hi) * 255.0, cell.y, hash(vec2(cell.y * 91.0, 3.0)));
