@@ -25,19 +25,25 @@ case $kind in candle | fire) ;; *) echo "seeds.sh: KIND: expected candle or fire
 n=0 features_ok=0 all_ok=0
 declare -A misses=()
 for ((s = first; s <= last; ++s)); do
-  out=$("$here/judge.sh" "$scene" "$s" "$kind" 2>&1)
+  out=$("$here/judge.sh" "$scene" "$s" "$kind" --json 2>&1)
   rc=$?
   case $rc in 0 | 1) ;; 77) echo "$out" | tail -3 >&2; exit 77 ;;
   *) echo "seeds.sh: judging seed $s failed (exit $rc):" >&2; echo "$out" | tail -5 >&2; exit 2 ;;
   esac
-  # The tables' rows: "  NAME  ... inside|outside"; the features are the first seven.
-  outside=$(echo "$out" | awk '$NF == "outside" && NF >= 5 {print $1}' | tr '\n' ' ')
-  feat_out=$(echo "$out" | awk '$NF == "outside" && NF == 5 {print $1}' | tr '\n' ' ')
+  # measure's verdict (its JSON, the last line): the features outside, then the spectra.
+  verdict=$(echo "$out" | tail -1 | /usr/bin/python3 -c '
+import json, sys
+d = json.load(sys.stdin)
+print(" ".join(k for k, v in d["features"].items() if not v["inside"]))
+print(" ".join(k for k, v in d["spectra"].items() if not v["inside"]))') ||
+    { echo "seeds.sh: seed $s: no verdict from measure:" >&2; echo "$out" | tail -3 >&2; exit 2; }
+  feat_out=$(echo "$verdict" | sed -n 1p)
+  outside=$(echo "$verdict" | tr '\n' ' ' | sed 's/^ *//; s/ *$//')
   n=$((n + 1))
   [ -z "$feat_out" ] && features_ok=$((features_ok + 1))
   [ -z "$outside" ] && all_ok=$((all_ok + 1))
   for f in $outside; do misses[$f]=$((${misses[$f]:-0} + 1)); done
-  echo "seed $s: ${outside:-all inside}" | sed 's/ $//'
+  echo "seed $s: ${outside:-all inside}"
 done
 echo "$(basename "$scene"): the seven features inside on $features_ok of $n seeds; all eleven (with the four spectra) on $all_ok of $n"
 if [ ${#misses[@]} -gt 0 ]; then
