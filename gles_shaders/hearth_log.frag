@@ -48,10 +48,12 @@ void main() {
   vec3 colour;
   o_crack = vec4(0.0);
   if (v_log.z > 0.5) {
-    // End grain: rings, pale wood, burnt towards the rim.
+    // End grain: faint rings in wood darkened by the heat, burnt black
+    // towards the rim. Pale sawn wood reads as a lit disc at the end of every
+    // log (real fireplace logs' ends are sooted or charred).
     float r = v_radius;
     float rings = 0.5 + 0.5 * sin(r * 40.0 + noise(vec2(r * 9.0, v_seed)) * 3.0);
-    colour = mix(vec3(0.42, 0.3, 0.19), vec3(0.3, 0.2, 0.12), rings) * (1.0 - 0.85 * smoothstep(0.6, 0.95, r));
+    colour = mix(vec3(0.15, 0.1, 0.065), vec3(0.1, 0.068, 0.045), rings) * (1.0 - 0.85 * smoothstep(0.5, 0.9, r));
   } else {
     vec2 q = vec2(v_log.y * 14.0 + v_seed, v_log.x * 5.0);
     // Bark: thick plates split by deep, dark fissures that wander along the
@@ -97,7 +99,11 @@ void main() {
     // reads as embers in the deepest fissures, not as a drawn network or as
     // sparkles scattered over the log; a crack is a soft, hot seam wider than
     // the char's dark gap.
-    float crack = smoothstep(0.2, 0.0, cell.x) * char_amount;
+    // A seam under about two pixels wide (far or edge-on logs) breaks into a
+    // dotted line of bright pixels: it widens to two pixels and dims to keep
+    // its glow.
+    float seam = max(0.2, 2.0 * fwidth(cell.x));
+    float crack = smoothstep(seam, 0.0, cell.x) * (0.2 / seam) * char_amount;
     crack *= smoothstep(0.7, 0.9, cell.y);
     crack *= smoothstep(0.5, 0.7, fbm(q * vec2(2.0, 6.0) + 23.0)) * smoothstep(0.35, 0.8, above);
     // 16 bits over two channels: the glow is bright, 8 would band it.
