@@ -16,6 +16,7 @@ void FrameReports::presented(uint64_t index, Clock::time_point begin, Clock::tim
     const double work = std::chrono::duration<double, std::milli>(end - begin).count();
     const double interval = std::chrono::duration<double, std::milli>(end - last_present_).count();
     stats_->add(index == 0 ? work : interval, work);
+    if (index == 0) stats_->first_presented(end);
   }
   last_present_ = end;
   if (kiosk_) {

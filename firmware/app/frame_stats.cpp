@@ -1,9 +1,12 @@
 #include "app/frame_stats.h"
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <nlohmann/json.hpp>
 
@@ -48,7 +51,42 @@ std::string FrameStats::json(uint64_t frames, double cpu_seconds, int64_t missed
   j["missed_vblanks"] =
       missed < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(missed);
   j["peak_rss_mb"] = json_decimals(peak_rss_mb(), 1);
+  j["first_frame_ms"] = first_frame_ms_ < 0
+                            ? nlohmann::ordered_json(nullptr)
+                            : nlohmann::ordered_json(json_decimals(first_frame_ms_, 1));
   return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
+
+void FrameStats::first_presented(std::chrono::steady_clock::time_point at) {
+  if (first_frame_ms_ < 0)
+    first_frame_ms_ = std::chrono::duration<double, std::milli>(at - process_start_).count();
+}
+
+std::chrono::steady_clock::time_point process_start_time() {
+  const auto now = std::chrono::steady_clock::now();
+  // /proc/self/stat's 22nd field: the start in clock ticks since boot (on
+  // CLOCK_BOOTTIME). The 2nd, the command name, may hold spaces: count
+  // fields after its closing parenthesis.
+  char buf[1024] = {};
+  FILE* f = std::fopen("/proc/self/stat", "r");
+  if (!f) return now;
+  const size_t n = std::fread(buf, 1, sizeof buf - 1, f);
+  std::fclose(f);
+  buf[n] = '\0';
+  const char* p = std::strrchr(buf, ')');
+  unsigned long long start_ticks = 0;
+  if (!p || std::sscanf(
+                p + 1,
+                " %*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %*u %*u %*d %*d %*d %*d %*d %*d %llu",
+                &start_ticks) != 1)
+    return now;
+  timespec boot{};
+  const long hz = sysconf(_SC_CLK_TCK);
+  if (hz <= 0 || clock_gettime(CLOCK_BOOTTIME, &boot) != 0) return now;
+  const double age_s = boot.tv_sec + boot.tv_nsec * 1e-9 - static_cast<double>(start_ticks) / hz;
+  if (!(age_s >= 0 && age_s < 1e6)) return now;
+  return now - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                   std::chrono::duration<double>(age_s));
 }
 
 double process_cpu_seconds() {
