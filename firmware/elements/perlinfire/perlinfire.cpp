@@ -64,6 +64,8 @@ struct FireSettings {
   float halo = 0.0f;     // the camera's soft halo around bright flames (sheets, reduced scale)
   double tongue_stretch = 8;  // the tongue field's cells are this much taller than wide
   float tongue_base = 0.45f;  // the height (of the volume) where the gaps reach full depth
+  Fixed tongue_rise = Fixed::from_int(1);    // how fast the tongue field rises, of the turbulence's
+  Fixed tongue_evolve = Fixed::from_int(1);  // how fast it changes in place, of that rise
   Vec3 color{1, 1, 1};
   bool additive = true;
   float obstacle = 0;  // fraction of the volume's height that is solid (logs, grate)
@@ -496,16 +498,18 @@ class PerlinFire final : public Element {
       flow_cs_[i * 2 + 1] = static_cast<float>(std::sin(angle));
     }
     // The tongue field rises with the turbulence (its own lattice) and drifts with the wind.
-    const int64_t tongue_rise =
+    const int64_t tongue_cells =
         (t * Fixed::from_double(s_.tongues / s_.tongue_stretch).raw >> Fixed::kFracBits) *
             s_.speed.raw >>
         Fixed::kFracBits;
+    const int64_t tongue_rise = tongue_cells * s_.tongue_rise.raw >> Fixed::kFracBits;
+    const int64_t tongue_evolve = tongue_cells * s_.tongue_evolve.raw >> Fixed::kFracBits;
     const double tongue_per_noise = s_.tongues / s_.frequency;
     tongue_offset_[0] = static_cast<float>(
         std::fmod(drift_x_.to_double() * tongue_per_noise, static_cast<double>(period_)));
     tongue_offset_[1] = static_cast<float>((tongue_rise % wrap) * to_float);
-    // It evolves through its third axis as fast as it rises.
-    tongue_offset_[2] = static_cast<float>((tongue_rise % wrap) * to_float);
+    // It evolves through its third axis.
+    tongue_offset_[2] = static_cast<float>((tongue_evolve % wrap) * to_float);
   }
 
   struct Uniforms {
@@ -613,6 +617,8 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.tongue_stretch = r.number("tongue_stretch", s.tongue_stretch, 0.25, 32);
   s.tongue_base = static_cast<float>(r.number("tongue_base", s.tongue_base, 0.01, 1));
   s.speed = r.fixed("speed", s.speed.to_double(), 0, 10);
+  s.tongue_rise = r.fixed("tongue_rise", s.tongue_rise.to_double(), 0, 4);
+  s.tongue_evolve = r.fixed("tongue_evolve", s.tongue_evolve.to_double(), 0, 4);
   s.frequency = r.number("frequency", s.frequency, 0.1, 32);
   s.flow_speed = r.fixed("flow_speed", s.flow_speed.to_double(), 0, 20);
   s.color = r.color("color", s.color);

@@ -173,6 +173,48 @@ double band_luma(const test::Frame& f, float from, float to) {
   return sum;
 }
 
+// Correlation of the luma of two frames' bed rows (the lower half of the
+// volume), column sums: where the tongues stand across the fire.
+double tongue_columns_correlation(const test::Frame& a, const test::Frame& b) {
+  const int y0 = static_cast<int>(project({0, kSize.y * 0.5f, 0}).y);
+  const int y1 = static_cast<int>(project({0, kSize.y * 0.05f, 0}).y);
+  std::vector<double> ca(kW, 0.0), cb(kW, 0.0);
+  for (int y = std::max(y0, 0); y < std::min(y1, kH); ++y)
+    for (int x = 0; x < kW; ++x) ca[x] += a.luma(x, y), cb[x] += b.luma(x, y);
+  double ma = 0, mb = 0;
+  for (int x = 0; x < kW; ++x) ma += ca[x] / kW, mb += cb[x] / kW;
+  double sab = 0, saa = 0, sbb = 0;
+  for (int x = 0; x < kW; ++x) {
+    sab += (ca[x] - ma) * (cb[x] - mb);
+    saa += (ca[x] - ma) * (ca[x] - ma);
+    sbb += (cb[x] - mb) * (cb[x] - mb);
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
+TEST(PerlinFire, TonguesThatDoNotRiseStandWhereTheyBurn) {
+  // A few broad tongues, fast, little turbulence. Where the tongues stand
+  // across the bed over one second: with `tongue_rise = 0` and a slow
+  // `tongue_evolve` they stay put; the field rising (1) or changing in place
+  // as fast as it would rise (`tongue_evolve = 1`) moves them.
+  const std::string fire =
+      "tongues = 6\ntongue_gap = 1\ntongue_width = 0.5\ntongue_roots = 1\ntongue_base = 0.05\n"
+      "displacement = 0.1\nspeed = 3\nglow = 0\n";
+  const auto kept = [&](const std::string& extra) {
+    test::RenderHarness h(scene(fire + extra), kW, kH, 3);
+    h.run(10);
+    const test::Frame f0 = h.read();
+    h.run(60);  // one second later
+    return tongue_columns_correlation(f0, h.read());
+  };
+  const double standing = kept("tongue_rise = 0\ntongue_evolve = 0.03\n");
+  const double rising = kept("tongue_rise = 1\ntongue_evolve = 0.03\n");
+  const double evolving = kept("tongue_rise = 0\ntongue_evolve = 1\n");
+  EXPECT_GT(standing, 0.9);
+  EXPECT_LT(rising, standing - 0.1);
+  EXPECT_LT(evolving, standing - 0.3);
+}
+
 TEST(PerlinFire, CoolingDimsTheRisenFlamesNotTheBed) {
   // The same fire (one seed, one frame) with and without cooling: what rose
   // high (tips, pieces that broke off) is dim, while the bed, below where
