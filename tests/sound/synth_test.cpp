@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sound/sound_synth.h"
+#include "support/correlation.h"
 
 namespace candela {
 namespace {
@@ -32,19 +33,6 @@ double rms(const float* x, int n) {
   double s = 0;
   for (int i = 0; i < n; ++i) s += static_cast<double>(x[i]) * x[i];
   return std::sqrt(s / n);
-}
-
-double correlation(const std::vector<double>& a, const std::vector<double>& b) {
-  double ma = 0, mb = 0;
-  for (size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
-  ma /= a.size(), mb /= b.size();
-  double sab = 0, saa = 0, sbb = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    sab += (a[i] - ma) * (b[i] - mb);
-    saa += (a[i] - ma) * (a[i] - ma);
-    sbb += (b[i] - mb) * (b[i] - mb);
-  }
-  return sab / std::sqrt(saa * sbb);
 }
 
 TEST(SoundSynth, StepsSpanTheirShareOfSamples) {
@@ -143,7 +131,7 @@ TEST(SoundSynth, RoarLevelFollowsBrightness) {
       b_sum = e_sum = 0;
     }
   }
-  EXPECT_GT(correlation(brightness, level), 0.9);
+  EXPECT_GT(test::correlation(brightness, level), 0.9);
 
   auto mean_level = [&](double fire) {
     SoundSynth fresh(s, 60, 11);

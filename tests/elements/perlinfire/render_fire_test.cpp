@@ -12,6 +12,7 @@
 #include "embedded_scenes.h"
 #include "gl/math.h"
 #include "scene/scene_file.h"
+#include "support/correlation.h"
 #include "support/render_harness.h"
 #include "support/scene_text.h"
 
@@ -173,23 +174,15 @@ double band_luma(const test::Frame& f, float from, float to) {
   return sum;
 }
 
-// Correlation of the luma of two frames' bed rows (the lower half of the
-// volume), column sums: where the tongues stand across the fire.
-double tongue_columns_correlation(const test::Frame& a, const test::Frame& b) {
+// Luma of the bed's rows (the lower half of the volume) summed down each
+// column: where the tongues stand across the fire.
+std::vector<double> tongue_columns(const test::Frame& f) {
   const int y0 = static_cast<int>(project({0, kSize.y * 0.5f, 0}).y);
   const int y1 = static_cast<int>(project({0, kSize.y * 0.05f, 0}).y);
-  std::vector<double> ca(kW, 0.0), cb(kW, 0.0);
+  std::vector<double> columns(kW, 0.0);
   for (int y = std::max(y0, 0); y < std::min(y1, kH); ++y)
-    for (int x = 0; x < kW; ++x) ca[x] += a.luma(x, y), cb[x] += b.luma(x, y);
-  double ma = 0, mb = 0;
-  for (int x = 0; x < kW; ++x) ma += ca[x] / kW, mb += cb[x] / kW;
-  double sab = 0, saa = 0, sbb = 0;
-  for (int x = 0; x < kW; ++x) {
-    sab += (ca[x] - ma) * (cb[x] - mb);
-    saa += (ca[x] - ma) * (ca[x] - ma);
-    sbb += (cb[x] - mb) * (cb[x] - mb);
-  }
-  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+    for (int x = 0; x < kW; ++x) columns[x] += f.luma(x, y);
+  return columns;
 }
 
 TEST(PerlinFire, TonguesThatDoNotRiseStandWhereTheyBurn) {
@@ -205,7 +198,7 @@ TEST(PerlinFire, TonguesThatDoNotRiseStandWhereTheyBurn) {
     h.run(10);
     const test::Frame f0 = h.read();
     h.run(60);  // one second later
-    return tongue_columns_correlation(f0, h.read());
+    return test::correlation(tongue_columns(f0), tongue_columns(h.read()));
   };
   const double standing = kept("tongue_rise = 0\ntongue_evolve = 0.03\n");
   const double rising = kept("tongue_rise = 1\ntongue_evolve = 0.03\n");

@@ -11,6 +11,7 @@
 #include "fire_animation.h"
 #include "flame_photo.h"
 #include "fluid_solver.h"
+#include "support/correlation.h"
 
 namespace candela::fluid {
 namespace {
@@ -114,20 +115,6 @@ TEST(TextureSynthesis, MatchesHistogramAndPatchStatisticsOfTheExemplar) {
   EXPECT_NEAR(s_out, s_in, 0.12);
 }
 
-double correlation(const std::vector<float>& a, const std::vector<float>& b) {
-  double ma = 0, mb = 0;
-  for (size_t k = 0; k < a.size(); ++k) ma += a[k], mb += b[k];
-  ma /= a.size();
-  mb /= b.size();
-  double sab = 0, saa = 0, sbb = 0;
-  for (size_t k = 0; k < a.size(); ++k) {
-    sab += (a[k] - ma) * (b[k] - mb);
-    saa += (a[k] - ma) * (a[k] - ma);
-    sbb += (b[k] - mb) * (b[k] - mb);
-  }
-  return sab / std::sqrt(saa * sbb);
-}
-
 std::vector<float> luma(const RgbImage& img) {
   std::vector<float> l(img.width * img.height);
   for (size_t k = 0; k < l.size(); ++k)
@@ -148,7 +135,7 @@ TEST(TextureSynthesis, TemperatureControlMakesHotPlacesBright) {
                              0.5 * std::exp(-(std::pow(x - 46, 2) + std::pow(y - 22, 2)) / 60.0));
   Pcg32 rng(2);
   const RgbImage out = synth.synthesize(target, w, h, rng);
-  const double r = correlation(luma(out), target);
+  const double r = test::correlation(luma(out), target);
   std::printf("correlation(output luminance, temperature) = %.3f\n", r);
   EXPECT_GT(r, 0.6);
 }

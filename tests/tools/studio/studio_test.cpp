@@ -19,6 +19,7 @@
 
 #include "core/image.h"
 #include "story/story_file.h"
+#include "support/correlation.h"
 
 namespace fs = std::filesystem;
 
@@ -97,17 +98,6 @@ std::vector<double> whole(const candela::Image& img) {
                 img.width, img.height);
 }
 
-double correlation(const std::vector<double>& a, const std::vector<double>& b) {
-  double ma = 0, mb = 0;
-  for (size_t i = 0; i < a.size(); ++i) ma += a[i], mb += b[i];
-  ma /= a.size(), mb /= b.size();
-  double sab = 0, saa = 0, sbb = 0;
-  for (size_t i = 0; i < a.size(); ++i)
-    sab += (a[i] - ma) * (b[i] - mb), saa += (a[i] - ma) * (a[i] - ma),
-        sbb += (b[i] - mb) * (b[i] - mb);
-  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0;
-}
-
 std::vector<double> minus(const std::vector<double>& a, const std::vector<double>& b) {
   std::vector<double> d(a.size());
   for (size_t i = 0; i < a.size(); ++i) d[i] = a[i] - b[i];
@@ -152,7 +142,7 @@ TEST(Studio, AWeightEditChangesTheFlameAsRenderWeightsDoes) {
   const auto ds =
       minus(region(s1, rect, r0.width, r0.height), region(s0, rect, r0.width, r0.height));
   const auto dr = minus(whole(r1), whole(r0));
-  const double c = correlation(ds, dr), ratio = mean_abs(ds) / mean_abs(dr);
+  const double c = candela::test::correlation(ds, dr), ratio = mean_abs(ds) / mean_abs(dr);
   std::printf(
       "weight 3 +2 sigma: studio change %.2f, render-weights %.2f (ratio %.2f), correlation %.3f\n",
       mean_abs(ds), mean_abs(dr), ratio, c);
@@ -559,8 +549,8 @@ EditComparison compare_edit(
   const auto ds = minus(s1, s0), df = minus(f1, f0);
   r.studio_change = mean_abs(ds);
   r.scene_change = mean_abs(df);
-  r.change_correlation = correlation(ds, df);
-  r.image_correlation = correlation(s1, f1);
+  r.change_correlation = candela::test::correlation(ds, df);
+  r.image_correlation = candela::test::correlation(s1, f1);
   r.studio_detail[0] = detail(s0, mw, mh), r.studio_detail[1] = detail(s1, mw, mh);
   r.scene_detail[0] = detail(f0, mw, mh), r.scene_detail[1] = detail(f1, mw, mh);
   std::printf(
