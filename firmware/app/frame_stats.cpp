@@ -51,15 +51,15 @@ std::string FrameStats::json(uint64_t frames, double cpu_seconds, int64_t missed
   j["missed_vblanks"] =
       missed < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(missed);
   j["peak_rss_mb"] = json_decimals(peak_rss_mb(), 1);
-  j["first_frame_ms"] = first_frame_ms_ < 0
-                            ? nlohmann::ordered_json(nullptr)
-                            : nlohmann::ordered_json(json_decimals(first_frame_ms_, 1));
+  // Read here, once the run is over: the kiosk's start pays nothing for it.
+  j["first_frame_ms"] =
+      first_presented_
+          ? nlohmann::ordered_json(json_decimals(
+                std::chrono::duration<double, std::milli>(*first_presented_ - process_start_time())
+                    .count(),
+                1))
+          : nlohmann::ordered_json(nullptr);
   return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
-}
-
-void FrameStats::first_presented(std::chrono::steady_clock::time_point at) {
-  if (first_frame_ms_ < 0)
-    first_frame_ms_ = std::chrono::duration<double, std::milli>(at - process_start_).count();
 }
 
 std::chrono::steady_clock::time_point process_start_time() {

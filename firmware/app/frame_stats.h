@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,7 @@ class FrameStats {
  public:
   // Statistics cover at most this many frames (the first ones): 16 MB, whatever --frames says.
   static constexpr size_t kMaxFrames = size_t{1} << 20;
-  explicit FrameStats(size_t capacity = 1 << 16) : process_start_(process_start_time()) {
+  explicit FrameStats(size_t capacity = 1 << 16) {
     intervals_ms_.reserve(std::min(capacity, kMaxFrames));
     work_ms_.reserve(std::min(capacity, kMaxFrames));
   }
@@ -29,9 +30,11 @@ class FrameStats {
     }
   }
   size_t count() const { return intervals_ms_.size(); }
-  // The first frame was presented at `at`: start-up time, from the process's
-  // start (process_start_time()) to then.
-  void first_presented(std::chrono::steady_clock::time_point at);
+  // The first frame was presented at `at` (json() reports the start-up time:
+  // from the process's start, process_start_time(), to then).
+  void first_presented(std::chrono::steady_clock::time_point at) {
+    if (!first_presented_) first_presented_ = at;
+  }
   static double percentile(std::vector<double> v, double p);
   // One JSON line: frames, frame_ms_p50/p95/p99, work_ms_p50, cpu_ms_per_frame,
   // missed_vblanks (null if unknown), peak_rss_mb, first_frame_ms (null if no
@@ -42,8 +45,7 @@ class FrameStats {
 
  private:
   std::vector<double> intervals_ms_, work_ms_;
-  double first_frame_ms_ = -1;
-  std::chrono::steady_clock::time_point process_start_;
+  std::optional<std::chrono::steady_clock::time_point> first_presented_;
 };
 
 double process_cpu_seconds();
