@@ -20,8 +20,8 @@ between machines; the ratios stay comparable (issue 36: every scene at most
 within 2 s).
 
 Exit status: 0; 1 when --max-ratio, --max-p99-over-p95 or --max-start-ms is
-given and a scene exceeds it (each one named); 2 on bad options or when candela fails or prints
-no figures.
+given and a scene exceeds it (each one named); 2 on bad options or when
+candela fails or prints no figures.
 """
 import argparse
 import json
