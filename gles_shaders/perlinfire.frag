@@ -50,6 +50,7 @@ uniform vec3 u_tongue_offset; // its drift, rise and evolution, wrapped where th
 uniform float u_tongue_roots; // how deep the gaps cut at the very base (separate roots)
 uniform float u_glow;        // flame shading: brightness of the glow around the flames
 uniform float u_cooling;     // flame shading: share of the heat lost from the bed's top to the tips
+uniform float u_trail_lift;  // a shutter's trail: what its fade takes off (1/255) over this frame's share
 uniform vec3 u_tongue_gap;    // x: how deep gaps between tongues cut (0: none); y: their width;
                               // z: the height above the base where they reach full depth
 
@@ -202,4 +203,8 @@ void main() {
   float g = u_glow * (1.0 - exp(-6.0 * glow));
   o_color = u_ramp_here == 1 ? fire_ramp(exposure, g, u_color) : vec4(exposure, g, 0.0, 0.0);
 #endif
+  // With a shutter the fade takes 1/255 off the trail each frame, so that it
+  // ends at zero; this frame's share (1 - keep) of the lift gives it back
+  // wherever the fire is drawn, so a still flame keeps its level.
+  o_color += vec4(u_trail_lift);
 }

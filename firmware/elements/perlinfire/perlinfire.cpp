@@ -62,6 +62,7 @@ struct FireSettings {
   float glow = 0.0f;          // brightness of the soft glow around the flames (sheets)
   float cooling = 0.0f;  // how much the flames' heat falls from the bed's top to the tips (sheets)
   float halo = 0.0f;     // the camera's soft halo around bright flames (sheets, reduced scale)
+  double shutter = 0;    // the camera's exposure time, s (reduced scale; 0: each frame an instant)
   double tongue_stretch = 8;  // the tongue field's cells are this much taller than wide
   float tongue_base = 0.45f;  // the height (of the volume) where the gaps reach full depth
   Fixed tongue_rise = Fixed::from_int(1);    // how fast the tongue field rises, of the turbulence's
@@ -150,6 +151,8 @@ class PerlinFire final : public Element {
     vao_ = make_vertex_array();
     locate_uniforms();
     halo_ = s.shading == FireShading::kSheets && s.halo > 0;
+    if (s.shutter > 0)
+      shutter_fade_ = Program::from_library("fullscreen.vert", "perlinfire_shutter.frag");
 
     const NoiseTables tables(seed);
     perm_ = make_table_texture(GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, tables.perm2d().data());
@@ -221,12 +224,28 @@ class PerlinFire final : public Element {
     mvp_ = f.view_projection * model;
     visible_ = screen_rect(mvp_, box_min_, box_max_, f.width, f.height, rect_);
     offscreen_ = quality_.scale < 0.999f;
-    if (!visible_ || !offscreen_) return;
+    if (!visible_ || !offscreen_) {
+      trail_ = false;
+      return;
+    }
 
     const FramebufferRestore screen;
-    ensure_target(f.width, f.height);
-    sub_w_ = std::max(1, static_cast<int>(std::lround(f.width * quality_.scale)));
-    sub_h_ = std::max(1, static_cast<int>(std::lround(f.height * quality_.scale)));
+    const bool new_target = ensure_target(f.width, f.height);
+    const int sub_w = std::max(1, static_cast<int>(std::lround(f.width * quality_.scale)));
+    const int sub_h = std::max(1, static_cast<int>(std::lround(f.height * quality_.scale)));
+    // The shutter: the share of the earlier frames' exposure this one keeps.
+    // None after a gap, a new target or a new scale; all of it (nothing to
+    // draw) when the animation has not moved since the last frame.
+    double keep = 0;
+    if (s_.shutter > 0 && trail_ && !new_target && sub_w == sub_w_ && sub_h == sub_h_) {
+      const double dt = (time_ - trail_time_).to_double();
+      if (dt <= 0) return;
+      keep = std::exp(-2.0 * dt / s_.shutter);
+    }
+    trail_ = s_.shutter > 0;
+    trail_time_ = time_;
+    sub_w_ = sub_w;
+    sub_h_ = sub_h;
     target_.bind();
     glViewport(0, 0, sub_w_, sub_h_);
     glEnable(GL_SCISSOR_TEST);
@@ -241,15 +260,35 @@ class PerlinFire final : public Element {
     // The halo reads the target blurred (its mipmaps), whose coarse texels
     // reach past the part in use: the whole target is cleared, as what an
     // earlier frame left outside the box (it moves with the lean) or at a
-    // larger scale (automatic quality) would show in the halo.
-    if (halo_)
+    // larger scale (automatic quality) would show in the halo. So is a
+    // shutter's: its trail is kept over the whole target, so what the box
+    // leaves when it moves fades out with the rest.
+    if (halo_ || s_.shutter > 0)
       glScissor(0, 0, target_.width(), target_.height());
     else
       glScissor(x0, y0, x1 - x0, y1 - y0);
-    glClear(GL_COLOR_BUFFER_BIT);
+    if (keep > 0) {
+      // An exponential trail, keep = exp(-2 dt / shutter): the exposure's
+      // mean age is half the shutter's, as a camera's box exposure has.
+      glEnable(GL_BLEND);
+      glBlendColor(0, 0, 0, static_cast<float>(keep));
+      glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);  // keep * earlier - 1/255
+      glBlendFunc(GL_ONE, GL_CONSTANT_ALPHA);
+      shutter_fade_.use();
+      glBindVertexArray(vao_.get());
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      glBlendEquation(GL_FUNC_ADD);  // + (1 - keep) * this frame
+      glBlendFunc(GL_ONE_MINUS_CONSTANT_ALPHA, GL_ONE);
+      trail_lift_ = static_cast<float>(1.0 / 255.0 / (1.0 - keep));
+    } else {
+      glClear(GL_COLOR_BUFFER_BIT);
+      glDisable(GL_BLEND);
+    }
     glScissor(x0, y0, x1 - x0, y1 - y0);
-    glDisable(GL_BLEND);
     march(f);
+    trail_lift_ = 0;
+    glDisable(GL_BLEND);
+    glBlendColor(0, 0, 0, 0);
     glDisable(GL_SCISSOR_TEST);
     if (halo_) {
       glBindTexture(GL_TEXTURE_2D, target_.texture());
@@ -349,6 +388,7 @@ class PerlinFire final : public Element {
     glUniform1f(u_.glow, s_.glow);
     glUniform1f(u_.tongue_roots, s_.tongue_roots);
     glUniform1f(u_.cooling, s_.cooling);
+    glUniform1f(u_.trail_lift, trail_lift_);
     glUniform3f(u_.tongue_gap, s_.tongue_gap, s_.tongue_width, s_.tongue_base);
     glUniform1f(u_.obstacle, s_.obstacle > 0 ? s_.obstacle : -1e9f);
     glUniform3f(u_.color, s_.color.x, s_.color.y, s_.color.z);
@@ -408,6 +448,7 @@ class PerlinFire final : public Element {
     u_.glow = u("u_glow");
     u_.tongue_roots = u("u_tongue_roots");
     u_.cooling = u("u_cooling");
+    u_.trail_lift = u("u_trail_lift");
     u_.composite_color = composite_.uniform("u_color");
     u_.image = composite_.uniform("u_image");
     u_.uv_per_pixel = composite_.uniform("u_uv_per_pixel");
@@ -433,8 +474,9 @@ class PerlinFire final : public Element {
 
   // The offscreen target, made once per screen size at the largest render
   // scale the ladder uses; smaller scales use its lower-left part.
-  void ensure_target(int w, int h) {
-    if (w == screen_w_ && h == screen_h_) return;
+  // True when it was made anew (its content undefined).
+  bool ensure_target(int w, int h) {
+    if (w == screen_w_ && h == screen_h_) return false;
     screen_w_ = w;
     screen_h_ = h;
     const float top = s_.quality.scale;
@@ -448,6 +490,7 @@ class PerlinFire final : public Element {
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 6);
       glBindTexture(GL_TEXTURE_2D, 0);
     }
+    return true;
   }
 
   // The box's pixels on screen (x0, y0, x1, y1; GL's bottom-left origin), a
@@ -516,8 +559,8 @@ class PerlinFire final : public Element {
     GLint mvp, box_min, box_max, camera, world_scale, noise_scale, step_length, max_steps, bound,
         octaves, weights, offset, flow_cs, time4, lean, displacement, turbulence_mean, intensity,
         obstacle, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble, ramp_here, slices,
-        tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, cooling, image, uv_per_pixel,
-        composite_color, halo, halo_lod;
+        tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, cooling, trail_lift, image,
+        uv_per_pixel, composite_color, halo, halo_lod;
   };
 
   FireSettings s_;
@@ -526,6 +569,7 @@ class PerlinFire final : public Element {
   int64_t period_;
   QualityGovernor governor_;
   Program program_, composite_;
+  Program shutter_fade_;  // a shutter's trail fading (perlinfire_shutter.frag)
   VertexArray vao_;
   Uniforms u_{};
   Texture perm_, grad3_, grad4_, profile_;
@@ -539,6 +583,9 @@ class PerlinFire final : public Element {
   bool visible_ = false, offscreen_ = false;
   bool halo_ = false;  // sheets with a halo: the offscreen target gets mipmaps
   int sub_w_ = 1, sub_h_ = 1;
+  bool trail_ = false;    // the target holds the last frame's exposure (a shutter's trail)
+  Fixed trail_time_;      // that frame's animation time
+  float trail_lift_ = 0;  // this frame's march adds it (the fade's 1/255 over 1 - keep)
   std::array<float, kMaxOctaves> weights_{}, time4_{};
   std::array<float, kMaxOctaves * 3> offsets_{};
   std::array<float, kMaxOctaves * 2> flow_cs_{};
@@ -614,6 +661,7 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.tongue_roots = static_cast<float>(r.number("tongue_roots", s.tongue_roots, 0, 1));
   s.cooling = static_cast<float>(r.number("cooling", s.cooling, 0, 1));
   s.halo = static_cast<float>(r.number("halo", s.halo, 0, 1));
+  s.shutter = r.number("shutter", s.shutter, 0, 0.25);
   s.tongue_stretch = r.number("tongue_stretch", s.tongue_stretch, 0.25, 32);
   s.tongue_base = static_cast<float>(r.number("tongue_base", s.tongue_base, 0.01, 1));
   s.speed = r.fixed("speed", s.speed.to_double(), 0, 10);
@@ -632,6 +680,8 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.auto_quality = r.string("quality", "fixed", {"fixed", "auto"}) == "auto";
   s.target_fps = r.number("target_fps", s.target_fps, 1, 10000);
   s.min_scale = static_cast<float>(r.number("min_render_scale", s.min_scale, 0.1, 1.0));
+  if (s.shutter > 0 && s.quality.scale >= 0.999f)
+    r.fail("shutter", "needs a render_scale below 1: the trail is kept in the reduced-size target");
   r.finish();
   return spec;
 }
