@@ -38,6 +38,7 @@ uniform float u_displacement;
 uniform float u_turbulence_mean;  // subtracted, so displacement does not shorten the flame
 uniform float u_intensity;
 uniform float u_obstacle;    // the box is solid below this height (unit y)
+uniform float u_obstacle_relief;  // how far its top rises and falls across the fire (unit y)
 uniform vec3 u_color;
 uniform sampler2D u_profile; // premultiplied RGBA; u = radius, v = 1 - height
 uniform vec2 u_sheet;        // flame shading: density threshold, the density range above it to full
@@ -163,8 +164,13 @@ void main() {
       // obstacle over a ragged band, else its cut along the logs' top shows
       // as one straight bright line per slab (seen from above, a stack of
       // them outlines the volume's floor).
-      if (u_obstacle > 0.0)
-        density *= smoothstep(u_obstacle, u_obstacle + 0.05, p.y + 0.05 * turb);
+      // Its top rises and falls across the fire (u_obstacle_relief; static, as
+      // the tops of a pile of logs), so the feet do not stand on one line.
+      if (u_obstacle > 0.0) {
+        float foot = u_obstacle;
+        if (u_obstacle_relief > 0.0) foot += u_obstacle_relief * pf_snoise3(vec3(q.x * 3.0, 17.3, 0.5));
+        density *= smoothstep(foot, foot + 0.05, p.y + 0.05 * turb);
+      }
       // The gaps only ever thin the density (depth <= 1), so where it is
       // already below the sheets' edge they cannot change this sample: skip
       // their noise there (most of the box: the air between the tongues).

@@ -69,7 +69,8 @@ struct FireSettings {
   Fixed tongue_evolve = Fixed::from_int(1);  // how fast it changes in place, of that rise
   Vec3 color{1, 1, 1};
   bool additive = true;
-  float obstacle = 0;  // fraction of the volume's height that is solid (logs, grate)
+  float obstacle = 0;         // fraction of the volume's height that is solid (logs, grate)
+  float obstacle_relief = 0;  // how far its top rises and falls across the fire (volume heights)
   Fixed wind_lean = Fixed::from_ratio(15, 100);  // tip offset per m/s, in volume widths
   Fixed max_lean = Fixed::from_ratio(6, 10);
   Fixed wind_drift = Fixed::from_ratio(1, 2);  // turbulence drift per m/s, fire heights/s
@@ -391,6 +392,7 @@ class PerlinFire final : public Element {
     glUniform1f(u_.trail_lift, trail_lift_);
     glUniform3f(u_.tongue_gap, s_.tongue_gap, s_.tongue_width, s_.tongue_base);
     glUniform1f(u_.obstacle, s_.obstacle > 0 ? s_.obstacle : -1e9f);
+    glUniform1f(u_.obstacle_relief, s_.obstacle_relief);
     glUniform3f(u_.color, s_.color.x, s_.color.y, s_.color.z);
     bind_texture(0, perm_.get(), u_.perm);
     bind_texture(1, grad3_.get(), u_.grad3);
@@ -432,6 +434,7 @@ class PerlinFire final : public Element {
     u_.turbulence_mean = u("u_turbulence_mean");
     u_.intensity = u("u_intensity");
     u_.obstacle = u("u_obstacle");
+    u_.obstacle_relief = u("u_obstacle_relief");
     u_.color = u("u_color");
     u_.perm = u("u_perm");
     u_.grad3 = u("u_grad3");
@@ -558,9 +561,9 @@ class PerlinFire final : public Element {
   struct Uniforms {
     GLint mvp, box_min, box_max, camera, world_scale, noise_scale, step_length, max_steps, bound,
         octaves, weights, offset, flow_cs, time4, lean, displacement, turbulence_mean, intensity,
-        obstacle, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble, ramp_here, slices,
-        tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, cooling, trail_lift, image,
-        uv_per_pixel, composite_color, halo, halo_lod;
+        obstacle, obstacle_relief, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble,
+        ramp_here, slices, tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, cooling,
+        trail_lift, image, uv_per_pixel, composite_color, halo, halo_lod;
   };
 
   FireSettings s_;
@@ -672,6 +675,7 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.color = r.color("color", s.color);
   s.additive = r.string("blend", "additive", {"additive", "alpha"}) == "additive";
   s.obstacle = static_cast<float>(r.number("obstacle_height", 0, 0, 0.95));
+  s.obstacle_relief = static_cast<float>(r.number("obstacle_relief", 0, 0, 0.5));
   s.wind_lean = r.fixed("wind_lean", s.wind_lean.to_double(), 0, 2);
   s.max_lean = r.fixed("max_lean", s.max_lean.to_double(), 0, 2);
   s.wind_drift = r.fixed("wind_drift", s.wind_drift.to_double(), 0, 4);

@@ -163,6 +163,42 @@ TEST(PerlinFire, ObstacleHidesTheBaseOfTheFire) {
   EXPECT_EQ(mean_luma(render(scene("obstacle_height = 0.3"), 4), base, 1), 0.0);
 }
 
+// How far the fire's lowest lit pixel (luma above 40) rises and falls across
+// the middle half of its width: the standard deviation of that row, in pixels.
+double foot_spread(const test::Frame& f) {
+  const int x0 = static_cast<int>(project({-0.25f * kSize.x, 0, 0}).x);
+  const int x1 = static_cast<int>(project({0.25f * kSize.x, 0, 0}).x);
+  std::vector<double> feet;
+  for (int x = x0; x <= x1; ++x)
+    for (int y = kH - 1; y >= 0; --y)
+      if (f.luma(x, y) > 40) {
+        feet.push_back(y);
+        break;
+      }
+  if (feet.size() < static_cast<size_t>(x1 - x0) * 3 / 4) return -1;  // not a fire across it
+  double mean = 0, var = 0;
+  for (double y : feet) mean += y / feet.size();
+  for (double y : feet) var += (y - mean) * (y - mean) / feet.size();
+  return std::sqrt(var);
+}
+
+TEST(PerlinFire, ObstacleReliefLiftsTheFeetUnevenly) {
+  // A flat obstacle cuts every flame at one height: their feet stand on a
+  // straight line. With relief its top rises and falls across the fire (a
+  // log pile's tops), so the feet do too, and still half a second later.
+  const std::string flat =
+      "profile_height = 0.9\nprofile_width = 0.97\nintensity = 18\nglow = 0\ntongue_gap = 0\n"
+      "obstacle_height = 0.15\n";
+  const test::Frame straight = render(scene(flat), 30, 5),
+                    uneven = render(scene(flat + "obstacle_relief = 0.25"), 30, 5),
+                    later = render(scene(flat + "obstacle_relief = 0.25"), 60, 5);
+  const double s0 = foot_spread(straight), s1 = foot_spread(uneven), s2 = foot_spread(later);
+  ASSERT_GE(s0, 0.0);
+  ASSERT_GE(s1, 0.0);
+  EXPECT_GT(s1, 3.0 * s0) << "flat " << s0;
+  EXPECT_GT(s2, 3.0 * s0) << "flat " << s0;
+}
+
 // Luma summed over the rows between two heights of the volume (fractions of
 // its height, through its centre), across the frame.
 double band_luma(const test::Frame& f, float from, float to) {
