@@ -61,8 +61,10 @@ struct FireSettings {
   float tongue_roots = 0.0f;  // how deep the gaps cut at the base: 0 one bed, 1 separate roots
   float glow = 0.0f;          // brightness of the soft glow around the flames (sheets)
   float cooling = 0.0f;  // how much the flames' heat falls from the bed's top to the tips (sheets)
-  float halo = 0.0f;     // the camera's soft halo around bright flames (sheets, reduced scale)
-  double shutter = 0;    // the camera's exposure time, s (reduced scale; 0: each frame an instant)
+  float swell = 0.0f;    // how far the flames' height swells and sinks across the fire (sheets)
+  Fixed swell_rate = Fixed::from_ratio(1, 4);  // how fast: noise lattice units per second
+  float halo = 0.0f;   // the camera's soft halo around bright flames (sheets, reduced scale)
+  double shutter = 0;  // the camera's exposure time, s (reduced scale; 0: each frame an instant)
   double tongue_stretch = 8;  // the tongue field's cells are this much taller than wide
   float tongue_base = 0.45f;  // the height (of the volume) where the gaps reach full depth
   Fixed tongue_rise = Fixed::from_int(1);    // how fast the tongue field rises, of the turbulence's
@@ -390,6 +392,7 @@ class PerlinFire final : public Element {
     glUniform1f(u_.tongue_roots, s_.tongue_roots);
     glUniform1f(u_.cooling, s_.cooling);
     glUniform1f(u_.trail_lift, trail_lift_);
+    glUniform2f(u_.swell, s_.swell, swell_time_);
     glUniform3f(u_.tongue_gap, s_.tongue_gap, s_.tongue_width, s_.tongue_base);
     glUniform1f(u_.obstacle, s_.obstacle > 0 ? s_.obstacle : -1e9f);
     glUniform1f(u_.obstacle_relief, s_.obstacle_relief);
@@ -452,6 +455,7 @@ class PerlinFire final : public Element {
     u_.tongue_roots = u("u_tongue_roots");
     u_.cooling = u("u_cooling");
     u_.trail_lift = u("u_trail_lift");
+    u_.swell = u("u_swell");
     u_.composite_color = composite_.uniform("u_color");
     u_.image = composite_.uniform("u_image");
     u_.uv_per_pixel = composite_.uniform("u_uv_per_pixel");
@@ -556,6 +560,10 @@ class PerlinFire final : public Element {
     tongue_offset_[1] = static_cast<float>((tongue_rise % wrap) * to_float);
     // It evolves through its third axis.
     tongue_offset_[2] = static_cast<float>((tongue_evolve % wrap) * to_float);
+    // The swell's clock (3-D noise, whatever the fire's kind), wrapped where that repeats.
+    const int64_t wrap3 = int64_t{NoiseConstants::kPeriod3} << Fixed::kFracBits;
+    swell_time_ =
+        static_cast<float>(((t * s_.swell_rate.raw >> Fixed::kFracBits) % wrap3) * to_float);
   }
 
   struct Uniforms {
@@ -563,7 +571,7 @@ class PerlinFire final : public Element {
         octaves, weights, offset, flow_cs, time4, lean, displacement, turbulence_mean, intensity,
         obstacle, obstacle_relief, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble,
         ramp_here, slices, tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, cooling,
-        trail_lift, image, uv_per_pixel, composite_color, halo, halo_lod;
+        trail_lift, swell, image, uv_per_pixel, composite_color, halo, halo_lod;
   };
 
   FireSettings s_;
@@ -593,6 +601,7 @@ class PerlinFire final : public Element {
   std::array<float, kMaxOctaves * 3> offsets_{};
   std::array<float, kMaxOctaves * 2> flow_cs_{};
   std::array<float, 3> tongue_offset_{};
+  float swell_time_ = 0;  // the swell's noise coordinate this step
   Flicker breath_;
   Fixed lean_x_, lean_z_, drift_x_, drift_z_, time_, breath_now_ = Fixed::from_int(1);
   Fixed wind_speed_;  // |wind| at the fire this step (L1), m/s
@@ -663,6 +672,8 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.glow = static_cast<float>(r.number("glow", s.glow, 0, 1));
   s.tongue_roots = static_cast<float>(r.number("tongue_roots", s.tongue_roots, 0, 1));
   s.cooling = static_cast<float>(r.number("cooling", s.cooling, 0, 1));
+  s.swell = static_cast<float>(r.number("swell", s.swell, 0, 0.9));
+  s.swell_rate = r.fixed("swell_rate", s.swell_rate.to_double(), 0, 60);
   s.halo = static_cast<float>(r.number("halo", s.halo, 0, 1));
   s.shutter = r.number("shutter", s.shutter, 0, 0.25);
   s.tongue_stretch = r.number("tongue_stretch", s.tongue_stretch, 0.25, 32);

@@ -199,6 +199,50 @@ TEST(PerlinFire, ObstacleReliefLiftsTheFeetUnevenly) {
   EXPECT_GT(s2, 3.0 * s0) << "flat " << s0;
 }
 
+TEST(PerlinFire, SwellMakesSomeFlamesTallerThanOthers) {
+  // Without swell every part of a wide fire reaches about as high (a picket
+  // fence of tips); with it the flames are taller in some places and lower in
+  // others. The same fire (seed, time, turbulence) with and without: the lit
+  // height of each column across most of its width, smoothed over a tongue's
+  // width, five frames a second apart. A calm fire (little turbulence), whose
+  // height the swell, not the noise, sets.
+  const std::string calm =
+      "profile_height = 0.5\nprofile_width = 0.97\nprofile_taper = 0.1\nintensity = 18\n"
+      "glow = 0\ntongue_gap = 0\ndisplacement = 0.8\n";
+  const int x0 = static_cast<int>(project({-0.3f * kSize.x, 0, 0}).x);
+  const int x1 = static_cast<int>(project({0.3f * kSize.x, 0, 0}).x);
+  const auto heights = [&](const test::Frame& f) {
+    std::vector<double> lit;
+    for (int x = x0; x <= x1; ++x) {
+      double n = 0;
+      for (int dx = -3; dx <= 3; ++dx)
+        for (int y = 0; y < kH; ++y) n += f.luma(x + dx, y) > 40;
+      lit.push_back(n / 7);
+    }
+    return lit;
+  };
+  const auto over_time = [&](const std::string& extra) {
+    test::RenderHarness h(scene(calm + extra), kW, kH, 5);
+    std::vector<std::vector<double>> out;
+    for (int k = 0; k < 5; ++k) {
+      h.run(60);
+      out.push_back(heights(h.read()));
+    }
+    return out;
+  };
+  const auto even = over_time(""), swelling = over_time("swell = 0.7\n");
+  int taller = 0, lower = 0, columns = 0;
+  for (size_t k = 0; k < even.size(); ++k)
+    for (size_t i = 0; i < even[k].size(); ++i) {
+      ASSERT_GT(even[k][i], 5) << "no fire at column " << i;
+      taller += swelling[k][i] > 1.15 * even[k][i];
+      lower += swelling[k][i] < 0.87 * even[k][i];
+      ++columns;
+    }
+  EXPECT_GT(taller, columns / 10);
+  EXPECT_GT(lower, columns / 20);
+}
+
 // Luma summed over the rows between two heights of the volume (fractions of
 // its height, through its centre), across the frame.
 double band_luma(const test::Frame& f, float from, float to) {
