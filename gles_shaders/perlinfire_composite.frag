@@ -12,9 +12,11 @@ uniform vec2 u_uv_per_pixel;  // screen pixel -> texture coordinate
 uniform vec3 u_color;         // the fire's tint (sheets)
 uniform float u_halo;         // sheets: the halo's strength (0: none)
 uniform float u_halo_lod;     // sheets: the mipmap level whose texels are the halo's blur
+uniform float u_depth;        // the fire's middle plane's depth (its `occlude` key: what is nearer hides it)
 out vec4 o_color;
 
 void main() {
+  gl_FragDepth = u_depth;  // only tested with `occlude` (no depth written)
   vec2 uv = gl_FragCoord.xy * u_uv_per_pixel;
   vec4 t = textureLod(u_image, uv, 0.0);
 #if PF_SHADING == 1

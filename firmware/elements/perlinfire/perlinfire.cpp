@@ -65,6 +65,8 @@ struct FireSettings {
   Fixed swell_rate = Fixed::from_ratio(1, 4);  // how fast: noise lattice units per second
   float halo = 0.0f;   // the camera's soft halo around bright flames (sheets, reduced scale)
   double shutter = 0;  // the camera's exposure time, s (reduced scale; 0: each frame an instant)
+  bool occlude =
+      false;  // what is drawn nearer than the fire's middle plane hides it (reduced scale)
   double tongue_stretch = 8;  // the tongue field's cells are this much taller than wide
   float tongue_base = 0.45f;  // the height (of the volume) where the gaps reach full depth
   Fixed tongue_rise = Fixed::from_int(1);    // how fast the tongue field rises, of the turbulence's
@@ -316,7 +318,18 @@ class PerlinFire final : public Element {
       glUniform1f(u_.halo, halo_ ? s_.halo : 0.0f);
       glUniform1f(u_.halo_lod, std::log2(std::max(1.0f, 0.06f * static_cast<float>(sub_h_))));
       bind_texture(4, target_.texture(), u_.image);
-      glDisable(GL_DEPTH_TEST);
+      // Occluding: the fire as one sheet through its middle, so the logs in
+      // front of that (their depth is in the buffer from the body pass) hide
+      // it and the logs behind it do not: flames rise from between the logs.
+      const Vec4 mid = mvp_ * Vec4{0.0f, 0.3f, 0.0f, 1.0f};
+      glUniform1f(u_.depth,
+                  mid.w > 1e-6f ? std::clamp(0.5f * mid.z / mid.w + 0.5f, 0.0f, 1.0f) : 0.0f);
+      if (s_.occlude) {
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+      } else {
+        glDisable(GL_DEPTH_TEST);
+      }
       glDisable(GL_CULL_FACE);
       glDepthMask(GL_FALSE);
       glBindVertexArray(vao_.get());
@@ -461,6 +474,7 @@ class PerlinFire final : public Element {
     u_.uv_per_pixel = composite_.uniform("u_uv_per_pixel");
     u_.halo = composite_.uniform("u_halo");
     u_.halo_lod = composite_.uniform("u_halo_lod");
+    u_.depth = composite_.uniform("u_depth");
   }
 
   static void bind_texture(int unit, GLuint texture, GLint location) {
@@ -571,7 +585,7 @@ class PerlinFire final : public Element {
         octaves, weights, offset, flow_cs, time4, lean, displacement, turbulence_mean, intensity,
         obstacle, obstacle_relief, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble,
         ramp_here, slices, tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, cooling,
-        trail_lift, swell, image, uv_per_pixel, composite_color, halo, halo_lod;
+        trail_lift, swell, image, uv_per_pixel, composite_color, halo, halo_lod, depth;
   };
 
   FireSettings s_;
@@ -676,6 +690,7 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.swell_rate = r.fixed("swell_rate", s.swell_rate.to_double(), 0, 60);
   s.halo = static_cast<float>(r.number("halo", s.halo, 0, 1));
   s.shutter = r.number("shutter", s.shutter, 0, 0.25);
+  s.occlude = r.boolean("occlude", s.occlude);
   s.tongue_stretch = r.number("tongue_stretch", s.tongue_stretch, 0.25, 32);
   s.tongue_base = static_cast<float>(r.number("tongue_base", s.tongue_base, 0.01, 1));
   s.speed = r.fixed("speed", s.speed.to_double(), 0, 10);
@@ -695,6 +710,8 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.auto_quality = r.string("quality", "fixed", {"fixed", "auto"}) == "auto";
   s.target_fps = r.number("target_fps", s.target_fps, 1, 10000);
   s.min_scale = static_cast<float>(r.number("min_render_scale", s.min_scale, 0.1, 1.0));
+  if (s.occlude && s.quality.scale >= 0.999f)
+    r.fail("occlude", "needs a render_scale below 1: the reduced-size fire is drawn as one sheet");
   if (s.shutter > 0 && s.quality.scale >= 0.999f)
     r.fail("shutter", "needs a render_scale below 1: the trail is kept in the reduced-size target");
   r.finish();

@@ -375,6 +375,41 @@ TEST(PerlinFire, ShutterBlursTheMotionNotTheStillFlame) {
   EXPECT_LT(shutter, 0.75 * instant) << "instant " << instant;
 }
 
+TEST(PerlinFire, OccludeLetsTheLogsInFrontHideTheFire) {
+  // Two logs across the fire's base: one in front of its middle plane, one
+  // behind it. Occluding, the fire is one sheet through its middle: the front
+  // log hides it (its pixels as without a fire), the back one does not (the
+  // fire's light over it, as without occluding). Without, the fire is drawn
+  // over both.
+  const std::string logs = R"(
+[[element]]
+kind = "hearth"
+position = [0.0, 0.0, 0.0]
+width = 0.6
+depth = 0.5
+embers = 0
+[[element.log]]
+from = [-0.2, 0.05, 0.09]
+to = [0.2, 0.05, 0.09]
+radius = 0.045
+[[element.log]]
+from = [-0.2, 0.12, -0.1]
+to = [0.2, 0.12, -0.1]
+radius = 0.045
+)";
+  const std::string fire = "glow = 0\nrender_scale = 0.5\n";
+  const test::Frame occluded = render(scene(fire + "occlude = true\n" + logs), 20, 5),
+                    drawn_over = render(scene(fire + logs), 20, 5),
+                    no_fire = render(scene(fire + "intensity = 0\n" + logs), 20, 5);
+  const Vec2 front = project({0.0f, 0.05f, 0.09f + 0.045f}),
+             back = project({0.0f, 0.12f + 0.03f, -0.1f});
+  const double dark_front = mean_luma(no_fire, front, 1), dark_back = mean_luma(no_fire, back, 1);
+  EXPECT_NEAR(mean_luma(occluded, front, 1), dark_front, 2.0);
+  EXPECT_GT(mean_luma(drawn_over, front, 1), dark_front + 40);
+  EXPECT_GT(mean_luma(occluded, back, 1), dark_back + 40);
+  EXPECT_NEAR(mean_luma(occluded, back, 1), mean_luma(drawn_over, back, 1), 2.0);
+}
+
 TEST(PerlinFire, AutoQualityUnderAnImpossibleBudgetSettlesAtTheFloor) {
   // 10000 fps: every frame is over budget, so the governor must walk the
   // whole ladder down (scale, steps, octaves) and stay at its last rung,
@@ -403,6 +438,12 @@ TEST(PerlinFire, BadSettingsNameTheKey) {
     FAIL() << "accepted render_scale = 2";
   } catch (const ConfigError& e) {
     EXPECT_EQ(e.key(), "element[0].render_scale");
+  }
+  try {  // the reduced-size fire is what is drawn as one sheet
+    load_scene_text(scene("occlude = true\nrender_scale = 1"), "fire.toml");
+    FAIL() << "accepted occlude at full scale";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key(), "element[0].occlude");
   }
   try {  // a shutter keeps its trail in the reduced-size target
     load_scene_text(scene("shutter = 0.03\nrender_scale = 1"), "fire.toml");
