@@ -63,7 +63,8 @@ struct FireSettings {
   float cooling = 0.0f;  // how much the flames' heat falls from the bed's top to the tips (sheets)
   float swell = 0.0f;    // how far the flames' height swells and sinks across the fire (sheets)
   Fixed swell_rate = Fixed::from_ratio(1, 4);  // how fast: noise lattice units per second
-  float halo = 0.0f;   // the camera's soft halo around bright flames (sheets, reduced scale)
+  float halo = 0.0f;          // the camera's soft halo around bright flames (sheets, reduced scale)
+  float halo_radius = 0.06f;  // how far it spreads, of the picture's height
   double shutter = 0;  // the camera's exposure time, s (reduced scale; 0: each frame an instant)
   bool occlude =
       false;  // what is drawn nearer than the fire's middle plane hides it (reduced scale)
@@ -314,9 +315,10 @@ class PerlinFire final : public Element {
       glUniform2f(u_.uv_per_pixel, static_cast<float>(sub_w_) / f.width / target_.width(),
                   static_cast<float>(sub_h_) / f.height / target_.height());
       glUniform3f(u_.composite_color, s_.color.x, s_.color.y, s_.color.z);
-      // The halo's blur: about 6% of the picture's height, whatever the scale.
+      // The halo's blur: its share of the picture's height, whatever the scale.
       glUniform1f(u_.halo, halo_ ? s_.halo : 0.0f);
-      glUniform1f(u_.halo_lod, std::log2(std::max(1.0f, 0.06f * static_cast<float>(sub_h_))));
+      glUniform1f(u_.halo_lod,
+                  std::log2(std::max(1.0f, s_.halo_radius * static_cast<float>(sub_h_))));
       bind_texture(4, target_.texture(), u_.image);
       // Occluding: the fire as one sheet through its middle, so the logs in
       // front of that (their depth is in the buffer from the body pass) hide
@@ -689,6 +691,7 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.swell = static_cast<float>(r.number("swell", s.swell, 0, 0.9));
   s.swell_rate = r.fixed("swell_rate", s.swell_rate.to_double(), 0, 60);
   s.halo = static_cast<float>(r.number("halo", s.halo, 0, 1));
+  s.halo_radius = static_cast<float>(r.number("halo_radius", s.halo_radius, 0.01, 0.25));
   s.shutter = r.number("shutter", s.shutter, 0, 0.25);
   s.occlude = r.boolean("occlude", s.occlude);
   s.tongue_stretch = r.number("tongue_stretch", s.tongue_stretch, 0.25, 32);

@@ -336,6 +336,24 @@ TEST(PerlinFire, HaloLightsTheDarkAroundTheFlamesOnly) {
   EXPECT_LT(flames_changed, flames / 10);
 }
 
+TEST(PerlinFire, HaloRadiusSpreadsItsLightFurther) {
+  // A wider halo lights more of the dark around the flames (a real fire's
+  // light spreads far), at the same seed and time.
+  const std::string base = "glow = 0\nrender_scale = 0.5\nhalo = 1\n";
+  const test::Frame plain = render(scene("glow = 0\nrender_scale = 0.5\n"), 30, 5),
+                    near = render(scene(base), 30, 5),
+                    far = render(scene(base + "halo_radius = 0.15"), 30, 5);
+  int lit_near = 0, lit_far = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      if (plain.luma(x, y) < 2) {
+        lit_near += near.luma(x, y) >= 6;
+        lit_far += far.luma(x, y) >= 6;
+      }
+  ASSERT_GT(lit_near, 40);
+  EXPECT_GT(lit_far, lit_near * 5 / 4) << "near " << lit_near;
+}
+
 // Mean |difference| of two frames' luma over the picture (gray levels).
 double mean_change(const test::Frame& a, const test::Frame& b) {
   double sum = 0;
