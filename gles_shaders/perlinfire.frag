@@ -179,10 +179,14 @@ void main() {
       // them outlines the volume's floor).
       // Its top rises and falls across the fire (u_obstacle_relief; static, as
       // the tops of a pile of logs), so the feet do not stand on one line.
+      // The relief's noise (in -1..1) only where it can move the fade: a sample
+      // above the highest foot's band is faded by nothing either way.
       if (u_obstacle > 0.0) {
+        float y = p.y + 0.05 * turb;
         float foot = u_obstacle;
-        if (u_obstacle_relief > 0.0) foot += u_obstacle_relief * pf_snoise3(vec3(q.x * 3.0, 17.3, 0.5));
-        density *= smoothstep(foot, foot + 0.05, p.y + 0.05 * turb);
+        if (u_obstacle_relief > 0.0 && y < u_obstacle + u_obstacle_relief + 0.05)
+          foot += u_obstacle_relief * pf_snoise3(vec3(q.x * 3.0, 17.3, 0.5));
+        density *= smoothstep(foot, foot + 0.05, y);
       }
       // The gaps only ever thin the density (depth <= 1), so where it is
       // already below the sheets' edge they cannot change this sample: skip

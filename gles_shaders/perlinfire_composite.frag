@@ -2,9 +2,10 @@
 // Puts the Perlin fire, rendered at a fraction of the screen's size into the
 // lower-left corner of its own texture, onto the screen, scaled up with
 // linear filtering. Drawn with fullscreen.vert, scissored to the fire's box.
-// The builder puts "#define PF_SHADING" and fire_ramp.frag in front: flame
-// sheets are stored as exposure and coloured here, after upscaling, so their
-// edges stay as crisp as the screen's pixels.
+// The builder puts "#define PF_SHADING" (and "#define PF_OCCLUDE" when the
+// fire occludes) and fire_ramp.frag in front: flame sheets are stored as
+// exposure and coloured here, after upscaling, so their edges stay as crisp
+// as the screen's pixels.
 precision highp float;
 
 uniform sampler2D u_image;    // PF_SHADING 0: premultiplied colour; 1: exposure
@@ -16,7 +17,9 @@ uniform float u_depth;        // the fire's middle plane's depth (its `occlude` 
 out vec4 o_color;
 
 void main() {
-  gl_FragDepth = u_depth;  // only tested with `occlude` (no depth written)
+#ifdef PF_OCCLUDE
+  gl_FragDepth = u_depth;  // tested, not written: nearer logs hide the fire
+#endif
   vec2 uv = gl_FragCoord.xy * u_uv_per_pixel;
   vec4 t = textureLod(u_image, uv, 0.0);
 #if PF_SHADING == 1

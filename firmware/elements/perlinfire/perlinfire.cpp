@@ -66,8 +66,8 @@ struct FireSettings {
   float halo = 0.0f;          // the camera's soft halo around bright flames (sheets, reduced scale)
   float halo_radius = 0.06f;  // how far it spreads, of the picture's height
   double shutter = 0;  // the camera's exposure time, s (reduced scale; 0: each frame an instant)
-  bool occlude =
-      false;  // what is drawn nearer than the fire's middle plane hides it (reduced scale)
+  // What is drawn nearer than the fire's middle plane hides it (reduced scale).
+  bool occlude = false;
   double tongue_stretch = 8;  // the tongue field's cells are this much taller than wide
   float tongue_base = 0.45f;  // the height (of the volume) where the gaps reach full depth
   Fixed tongue_rise = Fixed::from_int(1);    // how fast the tongue field rises, of the turbulence's
@@ -150,10 +150,10 @@ class PerlinFire final : public Element {
                                      {"perlinfire_noise.frag", "fire_ramp.frag", "perlinfire.frag"},
                                      perlinfire_defines(s.noise, s.shading));
     // The upscaling pass: the ramp (sheets colour after upscaling), then the composite.
-    composite_ =
-        Program::from_library("fullscreen.vert", {"fire_ramp.frag", "perlinfire_composite.frag"},
-                              "#define PF_SHADING " + std::to_string(static_cast<int>(s.shading)) +
-                                  "\nprecision highp float;\n");
+    composite_ = Program::from_library(
+        "fullscreen.vert", {"fire_ramp.frag", "perlinfire_composite.frag"},
+        "#define PF_SHADING " + std::to_string(static_cast<int>(s.shading)) +
+            (s.occlude ? "\n#define PF_OCCLUDE" : "") + "\nprecision highp float;\n");
     vao_ = make_vertex_array();
     locate_uniforms();
     halo_ = s.shading == FireShading::kSheets && s.halo > 0;
@@ -285,14 +285,13 @@ class PerlinFire final : public Element {
       glDrawArrays(GL_TRIANGLES, 0, 3);
       glBlendEquation(GL_FUNC_ADD);  // + (1 - keep) * this frame
       glBlendFunc(GL_ONE_MINUS_CONSTANT_ALPHA, GL_ONE);
-      trail_lift_ = static_cast<float>(1.0 / 255.0 / (1.0 - keep));
     } else {
       glClear(GL_COLOR_BUFFER_BIT);
       glDisable(GL_BLEND);
     }
     glScissor(x0, y0, x1 - x0, y1 - y0);
-    march(f);
-    trail_lift_ = 0;
+    // The fade takes 1/255 off; this frame's share (1 - keep) of the lift gives it back.
+    march(f, keep > 0 ? static_cast<float>(1.0 / 255.0 / (1.0 - keep)) : 0.0f);
     glDisable(GL_BLEND);
     glBlendColor(0, 0, 0, 0);
     glDisable(GL_SCISSOR_TEST);
@@ -323,10 +322,10 @@ class PerlinFire final : public Element {
       // Occluding: the fire as one sheet through its middle, so the logs in
       // front of that (their depth is in the buffer from the body pass) hide
       // it and the logs behind it do not: flames rise from between the logs.
-      const Vec4 mid = mvp_ * Vec4{0.0f, 0.3f, 0.0f, 1.0f};
-      glUniform1f(u_.depth,
-                  mid.w > 1e-6f ? std::clamp(0.5f * mid.z / mid.w + 0.5f, 0.0f, 1.0f) : 0.0f);
       if (s_.occlude) {
+        const Vec4 mid = mvp_ * Vec4{0.0f, 0.3f, 0.0f, 1.0f};
+        glUniform1f(u_.depth,
+                    mid.w > 1e-6f ? std::clamp(0.5f * mid.z / mid.w + 0.5f, 0.0f, 1.0f) : 0.0f);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
       } else {
@@ -347,8 +346,9 @@ class PerlinFire final : public Element {
 
  private:
   // The ray march through the box into the bound framebuffer (the screen,
-  // or the offscreen target at a reduced scale).
-  void march(const FrameContext& f) {
+  // or the offscreen target at a reduced scale). `trail_lift` is added to
+  // every fragment drawn: a shutter's share of what its fade took off.
+  void march(const FrameContext& f, float trail_lift = 0) {
     const QualityLevel q = quality_;
     const bool offscreen = offscreen_;
     const float lx = lean_x_.to_float(), lz = lean_z_.to_float();
@@ -406,7 +406,7 @@ class PerlinFire final : public Element {
     glUniform1f(u_.glow, s_.glow);
     glUniform1f(u_.tongue_roots, s_.tongue_roots);
     glUniform1f(u_.cooling, s_.cooling);
-    glUniform1f(u_.trail_lift, trail_lift_);
+    glUniform1f(u_.trail_lift, trail_lift);
     glUniform2f(u_.swell, s_.swell, swell_time_);
     glUniform3f(u_.tongue_gap, s_.tongue_gap, s_.tongue_width, s_.tongue_base);
     glUniform1f(u_.obstacle, s_.obstacle > 0 ? s_.obstacle : -1e9f);
@@ -610,9 +610,8 @@ class PerlinFire final : public Element {
   bool visible_ = false, offscreen_ = false;
   bool halo_ = false;  // sheets with a halo: the offscreen target gets mipmaps
   int sub_w_ = 1, sub_h_ = 1;
-  bool trail_ = false;    // the target holds the last frame's exposure (a shutter's trail)
-  Fixed trail_time_;      // that frame's animation time
-  float trail_lift_ = 0;  // this frame's march adds it (the fade's 1/255 over 1 - keep)
+  bool trail_ = false;  // the target holds the last frame's exposure (a shutter's trail)
+  Fixed trail_time_;    // that frame's animation time
   std::array<float, kMaxOctaves> weights_{}, time4_{};
   std::array<float, kMaxOctaves * 3> offsets_{};
   std::array<float, kMaxOctaves * 2> flow_cs_{};
