@@ -18,13 +18,17 @@ scene identical at every checkpoint, and the saved frames alike:
   (--loose, default perlin-fireplace: its fire lights a third of the 160x90
   frame): each of the ray march's samples is cut at the sheets' density
   threshold, so a 1-2 LSB texel difference moves an edge by a pixel along
-  every tongue; measured 16.6-19.1% of the pixels beyond 2 LSB, mean
-  1.03-1.22 LSB, max 22 LSB. Its halo (the exposure read blurred through
-  the offscreen target's mipmaps, more texel reads) spreads those texel
-  differences as a dim light over the area around the flames: measured
-  25.0-29.7% beyond 2 LSB, mean 1.51-1.81 LSB, max 16 LSB, with the
-  animation state's hash identical. There at most --loose-share (35%) and a
-  mean of 2 LSB, the same --max.
+  every tongue, and the march's sum of many texels carries x86's slightly
+  brighter texels into the whole body (measured at 10,000 steps: 35.8% of
+  the pixels beyond 2 LSB, mean 2.18 LSB, max 17, red 1.8 LSB brighter on
+  x86 on average, with the animation state's hash identical). There each
+  pixel is compared with the other frame's 3x3 neighbourhood: its distance
+  from the range of values there (both ways, the larger), held to the same
+  15%, mean 1 LSB and max 32 as the others. An edge moved by a pixel is
+  then no difference; a flame missing, moved or reshaped still is (the
+  fireplace's frame at step 1 against its own at step 10,000: 54% of the
+  pixels beyond 2 LSB, mean 22 LSB; x86 against arm64: 4.1-5.0%, mean
+  0.37-0.39 LSB).
 
 Exit 0: they agree; 1: they differ (every difference is named); 2: a run
 failed.
@@ -68,6 +72,43 @@ def collect(procs):
     return hashes, failed
 
 
+def neighbourhood_range(f):
+    """Per pixel and channel, the min and max over its 3x3 neighbourhood."""
+    p = np.pad(f, ((1, 1), (1, 1), (0, 0)), mode="edge")
+    h, w = f.shape[:2]
+    shifts = [p[y:y + h, x:x + w] for y in range(3) for x in range(3)]
+    return np.min(shifts, axis=0), np.max(shifts, axis=0)
+
+
+def neighbourhood_difference(fa, fb):
+    """Per pixel, how far each frame's value lies outside the range of the
+    other's 3x3 neighbourhood (RGB, the larger channel and direction): 0
+    where an edge only moved by a pixel."""
+    out = np.zeros(fa.shape[:2], dtype=np.int16)
+    for x, y in ((fa, fb), (fb, fa)):
+        lo, hi = neighbourhood_range(y)
+        d = np.maximum(np.maximum(lo - x, x - hi), 0)[..., :3].max(axis=-1)
+        out = np.maximum(out, d)
+    return out
+
+
+def compare_frames(fa, fb, args, strict=False, loose=False):
+    """Returns (alike, stats, rule) for two frames of the same scene."""
+    d = np.abs(fa - fb)[..., :3].max(axis=-1)  # RGB: what a viewer sees
+    stats = (f"max {int(d.max())} LSB, mean {float(d.mean()):.3f}, "
+             f"{float((d > args.tolerance).mean()):.2%} of pixels beyond {args.tolerance} LSB")
+    if strict:
+        return int(d.max()) <= args.tolerance, stats, f"every pixel within {args.tolerance} LSB"
+    rule = (f"at most {args.share:.0%} beyond {args.tolerance} LSB, mean <= 1, max <= {args.max}")
+    if loose:
+        d = neighbourhood_difference(fa, fb)
+        stats += (f"; against the 3x3 neighbourhood: max {int(d.max())} LSB, mean "
+                  f"{float(d.mean()):.3f}, {float((d > args.tolerance).mean()):.2%} beyond")
+        rule += " against the 3x3 neighbourhood"
+    worst, mean, beyond = int(d.max()), float(d.mean()), float((d > args.tolerance).mean())
+    return beyond <= args.share and mean <= 1.0 and worst <= args.max, stats, rule
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--host", required=True)
@@ -82,8 +123,8 @@ def main():
                     help="comma-separated scenes held to --tolerance on every pixel")
     ap.add_argument("--share", type=float, default=0.15)
     ap.add_argument("--loose", default="perlin-fireplace",
-                    help="comma-separated scenes held to --loose-share and a mean of 2 LSB")
-    ap.add_argument("--loose-share", type=float, default=0.35)
+                    help="comma-separated scenes compared pixel against the other frame's 3x3 "
+                         "neighbourhood (an edge may move by a pixel)")
     ap.add_argument("--max", type=int, default=32)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--out", required=True)
@@ -124,20 +165,8 @@ def main():
             if fa.shape != fb.shape:
                 differences.append(f"{name}: sizes differ {fa.shape} vs {fb.shape}")
                 continue
-            d = np.abs(fa - fb)[..., :3].max(axis=-1)  # RGB: what a viewer sees
-            worst, mean = int(d.max()), float(d.mean())
-            beyond = float((d > args.tolerance).mean())
-            stats = (f"max {worst} LSB, mean {mean:.3f}, {beyond:.2%} of pixels beyond "
-                     f"{args.tolerance} LSB")
-            if scene in args.strict.split(","):
-                ok = worst <= args.tolerance
-                rule = f"every pixel within {args.tolerance} LSB"
-            else:
-                loose = scene in args.loose.split(",")
-                share, mean_max = (args.loose_share, 2.0) if loose else (args.share, 1.0)
-                ok = beyond <= share and mean <= mean_max and worst <= args.max
-                rule = (f"at most {share:.0%} beyond {args.tolerance} LSB, mean <= {mean_max:g}, "
-                        f"max <= {args.max}")
+            ok, stats, rule = compare_frames(fa, fb, args, strict=scene in args.strict.split(","),
+                                             loose=scene in args.loose.split(","))
             if ok:
                 print(f"{name}: {stats}")
             else:
