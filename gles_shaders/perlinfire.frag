@@ -52,7 +52,8 @@ uniform float u_tongue_roots; // how deep the gaps cut at the very base (separat
 uniform float u_glow;        // flame shading: brightness of the glow around the flames
 uniform float u_cooling;     // flame shading: share of the heat lost from the bed's top to the tips
 uniform float u_trail_lift;  // a shutter's trail: what its fade takes off (1/255) over this frame's share
-uniform vec2 u_swell;        // flame shading: x how far the flames' height swells and sinks across the fire, y its clock
+uniform float u_swell;       // flame shading: how far the flames' height swells and sinks across the fire
+uniform float u_swell_scale[8];  // the lookup's height scale at 8 points across the fire (perlinfire.cpp)
 uniform vec3 u_tongue_gap;    // x: how deep gaps between tongues cut (0: none); y: their width;
                               // z: the height above the base where they reach full depth
 
@@ -158,16 +159,17 @@ void main() {
       // the lookup it also widens it, so gaps between tongues open deep.
       float turb = pf_turbulence(q) - u_turbulence_mean;
       float h = p.y;
-      if (u_swell.x > 0.0) {
+      if (u_swell > 0.0) {
         // A real fire is tall where its fuel burns hardest and low elsewhere,
         // and that changes over seconds; a row of tongues all as tall reads as
-        // a picket fence. A slow noise across the fire (about three swells)
-        // scales the lookup's height above the base: the flames reach up to
-        // 1 / (1 - swell) as high in one place, down to 1 / (1 + swell / 2)
-        // in another (sinking further would open gaps that split the fire).
+        // a picket fence. The lookup's height above the base is scaled by
+        // slow random heights at 8 points across the fire, joined smoothly
+        // (their mean kept, so the lit area stays: perlinfire.cpp).
         float base = max(u_obstacle, 0.0);
-        float f = pf_snoise3(vec3(q.x * 3.0, 7.0, u_swell.y));
-        h = base + (p.y - base) * (1.0 - u_swell.x * max(f, -0.5));
+        float across = clamp(q.x + 0.5, 0.0, 1.0) * 7.0;
+        int i = min(int(across), 6);
+        float scale = mix(u_swell_scale[i], u_swell_scale[i + 1], smoothstep(0.0, 1.0, across - float(i)));
+        h = base + (p.y - base) * scale;
       }
       float v = h + u_displacement * turb * mix(u_rise_growth, 1.0, clamp(p.y, 0.0, 1.0));
       vec4 c = textureLod(u_profile, vec2(r * (1.0 + u_wobble * turb), 1.0 - v), 0.0);

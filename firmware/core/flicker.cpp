@@ -18,12 +18,9 @@ uint32_t hash32(uint32_t x) {
 Flicker::Flicker(uint64_t seed)
     : key_(hash32(static_cast<uint32_t>(seed) ^ hash32(static_cast<uint32_t>(seed >> 32)))) {}
 
-// Smoothly interpolated random values, `rate` lattice points per second
-// (rate_hz_x10 / 10), in -1..1 as Q16.16.
-Fixed Flicker::value_noise(int64_t t_q16, int rate_hz_x10, uint32_t stream) const {
-  const int64_t x = t_q16 * rate_hz_x10 / 10;  // Q16.16 lattice coordinate
-  const auto i = static_cast<uint32_t>(x >> Fixed::kFracBits);
-  const int32_t f = static_cast<int32_t>(x & (Fixed::kOne - 1));
+Fixed Flicker::noise(int64_t x_q16, uint32_t stream) const {
+  const auto i = static_cast<uint32_t>(x_q16 >> Fixed::kFracBits);
+  const int32_t f = static_cast<int32_t>(x_q16 & (Fixed::kOne - 1));
   const auto lattice = [&](uint32_t k) {
     return static_cast<int32_t>(hash32(k ^ key_ ^ (stream * 0x9e3779b9U)) >> 15) - Fixed::kOne;
   };
@@ -32,6 +29,11 @@ Fixed Flicker::value_noise(int64_t t_q16, int rate_hz_x10, uint32_t stream) cons
   const int64_t f2 = static_cast<int64_t>(f) * f >> Fixed::kFracBits;
   const int64_t w = (3 * f2) - (2 * f2 * f >> Fixed::kFracBits);
   return Fixed::from_raw(static_cast<int32_t>(a + ((b - a) * w >> Fixed::kFracBits)));
+}
+
+// `rate` lattice points per second (rate_hz_x10 / 10).
+Fixed Flicker::value_noise(int64_t t_q16, int rate_hz_x10, uint32_t stream) const {
+  return noise(t_q16 * rate_hz_x10 / 10, stream);
 }
 
 Fixed Flicker::at(Fixed t) const {

@@ -20,6 +20,9 @@ class Flicker {
   // smoothly joined, so most of its power lies between 2 and 15 Hz (a fire's
   // tongues tearing off; at() reaches about 6 Hz).
   Fixed flutter(Fixed t) const;
+  // Smoothly joined random values at lattice coordinate x (Q16.16: one
+  // random value per whole x), -1..1; each stream is a signal of its own.
+  Fixed noise(int64_t x_q16, uint32_t stream) const;
 
  private:
   Fixed value_noise(int64_t t_q16, int rate_hz_x10, uint32_t stream) const;

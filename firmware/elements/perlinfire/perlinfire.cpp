@@ -25,6 +25,9 @@ namespace candela {
 namespace {
 
 constexpr int kMaxOctaves = 8;
+// The swell's heights: this many points across the fire, joined smoothly
+// (perlinfire.frag), so about three rises and falls fit across it.
+constexpr int kSwellPoints = 8;
 constexpr double kTwoPi = 6.283185307179586;
 
 // Where the noise's offsets wrap: the 3-D noise repeats every 768 lattice
@@ -62,7 +65,7 @@ struct FireSettings {
   float glow = 0.0f;          // brightness of the soft glow around the flames (sheets)
   float cooling = 0.0f;  // how much the flames' heat falls from the bed's top to the tips (sheets)
   float swell = 0.0f;    // how far the flames' height swells and sinks across the fire (sheets)
-  Fixed swell_rate = Fixed::from_ratio(1, 4);  // how fast: noise lattice units per second
+  Fixed swell_rate = Fixed::from_ratio(1, 4);  // how fast: new heights per second
   float halo = 0.0f;          // the camera's soft halo around bright flames (sheets, reduced scale)
   float halo_radius = 0.06f;  // how far it spreads, of the picture's height
   double shutter = 0;  // the camera's exposure time, s (reduced scale; 0: each frame an instant)
@@ -145,7 +148,8 @@ class PerlinFire final : public Element {
                                                std::min(1, s.quality.octaves),
                                                std::min(s.min_scale, s.quality.scale)),
                   governor_settings(s)),
-        breath_(seed ^ 0x62726561746865ULL) {
+        breath_(seed ^ 0x62726561746865ULL),
+        swell_heights_(seed ^ 0x7377656c6cULL) {
     program_ = Program::from_library("perlinfire.vert",
                                      {"perlinfire_noise.frag", "fire_ramp.frag", "perlinfire.frag"},
                                      perlinfire_defines(s.noise, s.shading));
@@ -407,7 +411,8 @@ class PerlinFire final : public Element {
     glUniform1f(u_.tongue_roots, s_.tongue_roots);
     glUniform1f(u_.cooling, s_.cooling);
     glUniform1f(u_.trail_lift, trail_lift);
-    glUniform2f(u_.swell, s_.swell, swell_time_);
+    glUniform1f(u_.swell, s_.swell);
+    glUniform1fv(u_.swell_scale, kSwellPoints, swell_scale_.data());
     glUniform3f(u_.tongue_gap, s_.tongue_gap, s_.tongue_width, s_.tongue_base);
     glUniform1f(u_.obstacle, s_.obstacle > 0 ? s_.obstacle : -1e9f);
     glUniform1f(u_.obstacle_relief, s_.obstacle_relief);
@@ -471,6 +476,7 @@ class PerlinFire final : public Element {
     u_.cooling = u("u_cooling");
     u_.trail_lift = u("u_trail_lift");
     u_.swell = u("u_swell");
+    u_.swell_scale = u("u_swell_scale");
     u_.composite_color = composite_.uniform("u_color");
     u_.image = composite_.uniform("u_image");
     u_.uv_per_pixel = composite_.uniform("u_uv_per_pixel");
@@ -576,10 +582,37 @@ class PerlinFire final : public Element {
     tongue_offset_[1] = static_cast<float>((tongue_rise % wrap) * to_float);
     // It evolves through its third axis.
     tongue_offset_[2] = static_cast<float>((tongue_evolve % wrap) * to_float);
-    // The swell's clock (3-D noise, whatever the fire's kind), wrapped where that repeats.
-    const int64_t wrap3 = int64_t{NoiseConstants::kPeriod3} << Fixed::kFracBits;
-    swell_time_ =
-        static_cast<float>(((t * s_.swell_rate.raw >> Fixed::kFracBits) % wrap3) * to_float);
+    if (s_.swell > 0) compute_swell(t);
+  }
+
+  // The swell: at each of kSwellPoints across the fire, a slow random value
+  // f in -1..1 (its own seeded signal, swell_rate new values a second) scales
+  // the flames' height there, up to 1 / (1 - swell) as high, down to
+  // 1 / (1 + swell / 2). The scales are then divided by their mean across the fire,
+  // weighted by the fire's depth there, so height moves from one place to
+  // another and the lit area stays about the same: a swell that added height
+  // made the whole fire's area and brightness swing twice as far as a real
+  // fire's (issue 35). The lookup's height is multiplied by the scale, so a
+  // flame 1/scale as tall, and the area goes with the mean of 1/scale.
+  void compute_swell(int64_t t) {
+    const int64_t x = t * s_.swell_rate.raw >> Fixed::kFracBits;
+    std::array<float, kSwellPoints> scale{};
+    float area = 0, depth_sum = 0;
+    for (int i = 0; i < kSwellPoints; ++i) {
+      const float f = swell_heights_.noise(x, static_cast<uint32_t>(i)).to_float();
+      const auto k = static_cast<size_t>(i);
+      scale[k] = 1.0f - s_.swell * std::max(f, -0.5f);
+      // The elliptic volume's depth at this point across it (-0.5..0.5).
+      const float across = static_cast<float>(i) / (kSwellPoints - 1) - 0.5f;
+      const float depth = std::sqrt(std::max(0.25f - across * across, 0.0f)) + 0.05f;
+      area += depth / scale[k];
+      depth_sum += depth;
+    }
+    const float mean = area / depth_sum;
+    // Never below 1 / (1 + swell / 3), however tall the rest: deeper, the
+    // low places open gaps that split the fire (FireplaceFill).
+    for (size_t k = 0; k < scale.size(); ++k)
+      swell_scale_[k] = std::min(scale[k] * mean, 1.0f + s_.swell / 3);
   }
 
   struct Uniforms {
@@ -587,7 +620,7 @@ class PerlinFire final : public Element {
         octaves, weights, offset, flow_cs, time4, lean, displacement, turbulence_mean, intensity,
         obstacle, obstacle_relief, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble,
         ramp_here, slices, tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, cooling,
-        trail_lift, swell, image, uv_per_pixel, composite_color, halo, halo_lod, depth;
+        trail_lift, swell, swell_scale, image, uv_per_pixel, composite_color, halo, halo_lod, depth;
   };
 
   FireSettings s_;
@@ -616,8 +649,9 @@ class PerlinFire final : public Element {
   std::array<float, kMaxOctaves * 3> offsets_{};
   std::array<float, kMaxOctaves * 2> flow_cs_{};
   std::array<float, 3> tongue_offset_{};
-  float swell_time_ = 0;  // the swell's noise coordinate this step
+  std::array<float, kSwellPoints> swell_scale_{};  // the lookup's height scale across the fire
   Flicker breath_;
+  Flicker swell_heights_;  // the swell's slow random heights, one signal per point across
   Fixed lean_x_, lean_z_, drift_x_, drift_z_, time_, breath_now_ = Fixed::from_int(1);
   Fixed wind_speed_;  // |wind| at the fire this step (L1), m/s
   bool uniforms_dirty_ = true;

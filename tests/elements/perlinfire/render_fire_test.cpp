@@ -232,13 +232,21 @@ TEST(PerlinFire, SwellMakesSomeFlamesTallerThanOthers) {
   };
   const auto even = over_time(""), swelling = over_time("swell = 0.7\n");
   int taller = 0, lower = 0, columns = 0;
-  for (size_t k = 0; k < even.size(); ++k)
+  for (size_t k = 0; k < even.size(); ++k) {
+    double area_even = 0, area_swelling = 0;
     for (size_t i = 0; i < even[k].size(); ++i) {
       ASSERT_GT(even[k][i], 5) << "no fire at column " << i;
       taller += swelling[k][i] > 1.15 * even[k][i];
       lower += swelling[k][i] < 0.87 * even[k][i];
       ++columns;
+      area_even += even[k][i];
+      area_swelling += swelling[k][i];
     }
+    // Height moves from one place to another: the fire's lit area stays
+    // (a swell that only added height made a real fire's area swing twice
+    // as far as any real fire's).
+    EXPECT_NEAR(area_swelling / area_even, 1.0, 0.1) << "frame " << k;
+  }
   EXPECT_GT(taller, columns / 10);
   EXPECT_GT(lower, columns / 20);
 }
