@@ -164,6 +164,11 @@ void InputHub::drain_room(WindField& wind) {
       room_last_drain_ns_ > 0 ? std::clamp<int64_t>((now - room_last_drain_ns_) / 2, 0, 10'000'000)
                               : 0;
   room_last_drain_ns_ = now;
+  const int64_t real_now = realtime_ns();
+  // The frame before this one: a gust started late with that frame before
+  // its time waited for the frame loop, not in the queue.
+  const int64_t real_before = room_last_drain_real_ns_;
+  room_last_drain_real_ns_ = real_now;
   for (int i = 0; i < room_pending_n_;) {
     const RoomIn& g = room_pending_[static_cast<size_t>(i)];
     if (g.due_mono_ns - half_frame > now) {
@@ -174,7 +179,8 @@ void InputHub::drain_room(WindField& wind) {
     room_origin_ns_.store(g.origin_ns, std::memory_order_relaxed);
     room_received_ns_.store(g.received_ns, std::memory_order_relaxed);
     room_due_ns_.store(g.due_ns, std::memory_order_relaxed);
-    room_applied_ns_.store(realtime_ns(), std::memory_order_relaxed);
+    room_applied_ns_.store(real_now, std::memory_order_relaxed);
+    room_frame_before_ns_.store(real_before, std::memory_order_relaxed);
     room_applied_.fetch_add(1, std::memory_order_release);
     applied_.fetch_add(1, std::memory_order_release);
     room_pending_[static_cast<size_t>(i)] = room_pending_[static_cast<size_t>(--room_pending_n_)];
@@ -295,7 +301,8 @@ std::string InputHub::state_json() const {
     room["last"] = {{"origin_ns", room_origin_ns_.load(std::memory_order_relaxed)},
                     {"received_ns", room_received_ns_.load(std::memory_order_relaxed)},
                     {"due_ns", room_due_ns_.load(std::memory_order_relaxed)},
-                    {"applied_ns", room_applied_ns_.load(std::memory_order_relaxed)}};
+                    {"applied_ns", room_applied_ns_.load(std::memory_order_relaxed)},
+                    {"frame_before_ns", room_frame_before_ns_.load(std::memory_order_relaxed)}};
     j["room"] = std::move(room);
   }
   return j.dump(-1, ' ', false, Json::error_handler_t::replace);

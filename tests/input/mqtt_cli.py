@@ -707,7 +707,19 @@ def case_room():
         check(r["origin_ns"] == g["t_ns"], n + ": the origin's time is carried", r)
         check(abs((r["due_ns"] - r["origin_ns"]) / 1e6 - want) < 0.5,
               n + ": due at the origin's time + the plane-S delay", r)
-        check(abs(got - want) <= frame_ms, n + ": started within one frame of its time", got - want)
+        # Within one frame of its time; later only where the frame loop
+        # itself ran no frame between the gust's time and its start (a
+        # loaded CI machine can hold a display's frame back by tens of ms):
+        # the frame before it was still before its time.
+        gap = (r["applied_ns"] - r["frame_before_ns"]) / 1e6
+        check(0 < gap < 1000, n + ": the frame before its start is reported", r)
+        held_by_loop = got - want > frame_ms and r["frame_before_ns"] < r["due_ns"]
+        if held_by_loop:
+            print("     %s: no frame between %.1f ms before its time and its start (%.1f ms apart)"
+                  % (n, (r["due_ns"] - r["frame_before_ns"]) / 1e6, gap))
+        check(abs(got - want) <= frame_ms or held_by_loop,
+              n + ": started within one frame of its time, or on the first frame after it",
+              (got - want, gap))
     if len(applied) == 2:
         check(applied["b"]["last"]["applied_ns"] < applied["c"]["last"]["applied_ns"],
               "the draught crosses the row in order: b before c")
