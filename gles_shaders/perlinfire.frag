@@ -13,7 +13,8 @@
 // by the noise, is cut at a sharp threshold (so the noise tears the outline
 // into tongues that split and detach), the hot path length through the sheets
 // is exposed like a camera sees a flame (cores clip to white) and coloured
-// by a black-body ramp (fire_ramp.glsl, applied here or after upscaling).
+// by a black-body ramp (fire_ramp.glsl, applied here or after upscaling);
+// PF_SWELL_POINTS is the number of the swell's heights across the fire.
 precision highp float;
 precision highp int;
 
@@ -53,7 +54,7 @@ uniform float u_glow;        // flame shading: brightness of the glow around the
 uniform float u_cooling;     // flame shading: share of the heat lost from the bed's top to the tips
 uniform float u_trail_lift;  // a shutter's trail: what its fade takes off (1/255) over this frame's share
 uniform float u_swell;       // flame shading: how far the flames' height swells and sinks across the fire
-uniform float u_swell_scale[8];  // the lookup's height scale at 8 points across the fire (perlinfire.cpp)
+uniform float u_swell_scale[PF_SWELL_POINTS];  // the lookup's height scale at points across the fire (perlinfire.cpp)
 uniform vec3 u_tongue_gap;    // x: how deep gaps between tongues cut (0: none); y: their width;
                               // z: the height above the base where they reach full depth
 
@@ -163,11 +164,11 @@ void main() {
         // A real fire is tall where its fuel burns hardest and low elsewhere,
         // and that changes over seconds; a row of tongues all as tall reads as
         // a picket fence. The lookup's height above the base is scaled by
-        // slow random heights at 8 points across the fire, joined smoothly
+        // slow random heights at PF_SWELL_POINTS across the fire, joined smoothly
         // (their mean kept, so the lit area stays: perlinfire.cpp).
         float base = max(u_obstacle, 0.0);
-        float across = clamp(q.x + 0.5, 0.0, 1.0) * 7.0;
-        int i = min(int(across), 6);
+        float across = clamp(q.x + 0.5, 0.0, 1.0) * float(PF_SWELL_POINTS - 1);
+        int i = min(int(across), PF_SWELL_POINTS - 2);
         float scale = mix(u_swell_scale[i], u_swell_scale[i + 1], smoothstep(0.0, 1.0, across - float(i)));
         h = base + (p.y - base) * scale;
       }

@@ -762,10 +762,10 @@ std::string perlinfire_defines(FireNoise kind, FireShading shading) {
                 "#define PF_NOISE_KIND %d\n#define PF_SHADING %d\n"
                 "#define PF_SIMPLEX_R2 %.9g\n"
                 "#define PF_SIMPLEX3_SCALE %#.9g\n#define PF_SIMPLEX4_SCALE %#.9g\n"
-                "#define PF_PERLIN4_SCALE %#.9g\n",
+                "#define PF_PERLIN4_SCALE %#.9g\n#define PF_SWELL_POINTS %d\n",
                 static_cast<int>(kind), static_cast<int>(shading), NoiseConstants::kSimplexRadius2,
                 NoiseConstants::kSimplex3Scale, NoiseConstants::kSimplex4Scale,
-                NoiseConstants::kPerlin4Scale);
+                NoiseConstants::kPerlin4Scale, kSwellPoints);
   return defines;
 }
 

@@ -21,8 +21,8 @@ enum class FireNoise { kSimplex3d, kFlow3d, kSimplex4d, kPerlin4d };
 // paper's way: soft and gaseous).
 enum class FireShading { kProfile = 0, kSheets = 1 };
 
-// The PF_* defines of the fire's shaders: noise kind, shading and the
-// constants of noise_tables.h.
+// The PF_* defines of the fire's shaders: noise kind, shading, the
+// constants of noise_tables.h and the swell's number of points.
 std::string perlinfire_defines(FireNoise kind, FireShading shading);
 
 // The fire's fragment shader text around another `body` (a whole shader
