@@ -158,17 +158,12 @@ void InputHub::drain_room(WindField& wind) {
       room_overflow_.fetch_add(1, std::memory_order_relaxed);
   }
   const int64_t now = monotonic_ns();
+  const int64_t before = room_last_drain_ns_;  // the frame before this one
   // Started on the frame nearest its time: up to half a frame early, so
   // the error is within +-half a frame, not 0..1 frame late.
   const int64_t half_frame =
-      room_last_drain_ns_ > 0 ? std::clamp<int64_t>((now - room_last_drain_ns_) / 2, 0, 10'000'000)
-                              : 0;
+      before > 0 ? std::clamp<int64_t>((now - before) / 2, 0, 10'000'000) : 0;
   room_last_drain_ns_ = now;
-  const int64_t real_now = realtime_ns();
-  // The frame before this one: a gust started late with that frame before
-  // its time waited for the frame loop, not in the queue.
-  const int64_t real_before = room_last_drain_real_ns_;
-  room_last_drain_real_ns_ = real_now;
   for (int i = 0; i < room_pending_n_;) {
     const RoomIn& g = room_pending_[static_cast<size_t>(i)];
     if (g.due_mono_ns - half_frame > now) {
@@ -179,8 +174,12 @@ void InputHub::drain_room(WindField& wind) {
     room_origin_ns_.store(g.origin_ns, std::memory_order_relaxed);
     room_received_ns_.store(g.received_ns, std::memory_order_relaxed);
     room_due_ns_.store(g.due_ns, std::memory_order_relaxed);
+    const int64_t real_now = realtime_ns();
     room_applied_ns_.store(real_now, std::memory_order_relaxed);
-    room_frame_before_ns_.store(real_before, std::memory_order_relaxed);
+    // The frame before, on the same clock: a gust started late with that
+    // frame before its time waited for the frame loop, not in the queue.
+    room_frame_before_ns_.store(before > 0 ? real_now - (now - before) : 0,
+                                std::memory_order_relaxed);
     room_applied_.fetch_add(1, std::memory_order_release);
     applied_.fetch_add(1, std::memory_order_release);
     room_pending_[static_cast<size_t>(i)] = room_pending_[static_cast<size_t>(--room_pending_n_)];

@@ -144,7 +144,6 @@ class InputHub {
   std::array<RoomIn, kRoomPending> room_pending_{};
   int room_pending_n_ = 0;
   int64_t room_last_drain_ns_ = 0;
-  int64_t room_last_drain_real_ns_ = 0;  // CLOCK_REALTIME of the frame before
   std::array<std::atomic<uint64_t>, 6> room_counts_{};
   std::atomic<uint64_t> room_applied_{0}, room_overflow_{0};
   std::atomic<int64_t> room_sent_ns_{0}, room_origin_ns_{0}, room_received_ns_{0}, room_due_ns_{0},
