@@ -46,9 +46,9 @@ void main() {
   // brick's face is nearly even; its tone differs from its neighbours').
   float pits = smoothstep(0.62, 0.85, noise(v_wall * 90.0));
   float grain = fbm(v_wall * vec2(18.0, 26.0));
-  vec3 brick = u_brick * (0.6 + 0.65 * b.y) * (0.85 + 0.25 * grain) * (1.0 - 0.15 * pits);
+  vec3 brick = u_brick * (0.8 + 0.3 * b.y) * (0.85 + 0.25 * grain) * (1.0 - 0.15 * pits);
   brick = mix(brick, vec3(dot(brick, vec3(0.3, 0.5, 0.2))), 0.25 * hash(vec2(b.y * 17.0, 1.0)));
-  vec3 colour = mix(brick, vec3(0.16, 0.15, 0.14) * (0.8 + 0.4 * grain), mortar);
+  vec3 colour = mix(brick, brick * 0.55 + vec3(0.03) * grain, mortar);
   float soot = 0.0;
   if (floor_surface) {
     // Ash lies thick near the fire and thins out towards the walls.
@@ -62,6 +62,10 @@ void main() {
     float streaks = fbm(vec2(v_wall.x * 6.0, v_wall.y * 1.5));
     soot = smoothstep(0.05, 0.5, v_wall.y) * (1.0 - smoothstep(0.4, 1.2, across + 0.5 * streaks)) +
            0.3 * smoothstep(0.3, 1.0, v_wall.y) * streaks;
+    // Years of fires film the whole box, unevenly: the courses show through
+    // it only where the fire lights them (bricks drawn crisp everywhere read
+    // as a wallpaper).
+    soot = max(soot, 0.5 * smoothstep(0.3, 0.75, fbm(v_wall * vec2(3.0, 2.0) + 9.0) + 0.2 * streaks));
     soot = clamp(soot * u_soot * (0.7 + 0.5 * streaks), 0.0, 0.85);
     colour = mix(colour, vec3(0.035, 0.03, 0.028) * (0.7 + 0.6 * grain), soot);
   }

@@ -86,12 +86,15 @@ void main() {
     // Under firelight a strong dome made the blocks read as cobbles: the
     // relief is kept faint, the seams narrow.
     float dome = smoothstep(0.0, 0.15, cell.x);
-    vec3 char_colour = vec3(0.045, 0.038, 0.033) * (0.85 + 0.3 * cell.y) * (0.7 + 0.3 * dome);
+    vec3 char_colour = vec3(0.045, 0.038, 0.033) * (0.9 + 0.2 * cell.y) * (0.8 + 0.2 * dome);
     // Grey ash on some blocks' crowns, most where the fire is hottest; dull,
     // as pale crowns on every block read as cobblestones.
-    float ash = smoothstep(0.55, 0.9, cell.y + 0.3 * above) * smoothstep(0.1, 0.4, cell.x) *
-                smoothstep(0.4, 0.7, noise(q * vec2(6.0, 16.0) + 7.0));
-    char_colour = mix(char_colour, vec3(0.2, 0.19, 0.18) * (0.7 + 0.3 * rough), 0.5 * ash);
+    // Grey ash lies in soft patches a hand across, most where the fire is
+    // hottest, a film over several blocks (ash on each block's crown, or
+    // any lighter crown, reads as gravel or cobbles from across a room).
+    float ash = smoothstep(0.55, 0.85, fbm(q * vec2(1.3, 3.0) + 7.0) + 0.25 * above - 0.15) *
+                smoothstep(0.02, 0.12, cell.x);
+    char_colour = mix(char_colour, vec3(0.16, 0.15, 0.14) * (0.75 + 0.25 * rough), 0.45 * ash);
     colour = mix(colour, char_colour, char_amount);
     // Cracks between the blocks glow where the fire licks (the underside's
     // glow is hearth_log_shade.frag's); not every crack at once.
