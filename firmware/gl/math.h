@@ -29,6 +29,21 @@ inline Vec3 normalize(Vec3 a) {
   return l > 0 ? a * (1.0f / l) : a;
 }
 
+// An axis-aligned box in world space (empty until a point is added).
+struct Box3 {
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  bool empty() const { return lo.x > hi.x; }
+  void add(Vec3 p) {
+    lo = {std::fmin(lo.x, p.x), std::fmin(lo.y, p.y), std::fmin(lo.z, p.z)};
+    hi = {std::fmax(hi.x, p.x), std::fmax(hi.y, p.y), std::fmax(hi.z, p.z)};
+  }
+  // The point grown by `r` on every side.
+  void add(Vec3 p, float r) {
+    add(p - Vec3{r, r, r});
+    add(p + Vec3{r, r, r});
+  }
+};
+
 struct Mat4 {
   float m[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   float& at(int row, int col) { return m[col * 4 + row]; }

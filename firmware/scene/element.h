@@ -110,6 +110,14 @@ class Element {
   virtual void prepare(const FrameContext& /*frame*/) {}
   // Draws this pass into the bound screen framebuffer, and nothing else.
   virtual void draw(const FrameContext& frame, DrawPass pass) = 0;
+  // Where this frame's draw passes can put light: `box` (world space) is
+  // grown to hold everything the element draws on the screen this frame,
+  // glows, halos and what it lights included. Called after prepare(), before
+  // the draw passes; a scene drawn at a reduced size scales up only the part
+  // of the picture its elements' boxes cover (scene/scaled_render.h), so a
+  // box too small cuts the picture. Returns false where the element cannot
+  // say (then the whole screen is scaled up); the default.
+  virtual bool drawn_bounds(const FrameContext& /*frame*/, Box3& /*box*/) const { return false; }
   // How many candles this element shows alight (the control socket's
   // `state`); -1: it has no candles. Called once per frame: no allocation.
   virtual int candles_lit() const { return -1; }

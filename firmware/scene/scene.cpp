@@ -90,6 +90,16 @@ void Scene::draw(FrameContext& frame) {
   // 1. Offscreen work, 2. the screen, 3. the passes (scene/element.h).
   for (auto& e : elements_) e->prepare(frame);
   resources_.prepare(frame);
+  // Drawn at a reduced size, only where the elements can draw is scaled up
+  // (each says where, or that it cannot: then all of it).
+  PixelBox content{0, 0, frame.width, frame.height};
+  if (drawn != full) {
+    Box3 box;
+    bool bounded = !scale_up_whole_;
+    for (const auto& e : elements_) bounded = bounded && e->drawn_bounds(frame, box);
+    if (!bounded || !project_box(box, frame.view_projection, drawn, content))
+      content = {0, 0, frame.width, frame.height};
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, frame.screen_framebuffer);
   glViewport(0, 0, frame.width, frame.height);
   glDisable(GL_SCISSOR_TEST);
@@ -103,7 +113,7 @@ void Scene::draw(FrameContext& frame) {
     frame.height = full.height;
     glBindFramebuffer(GL_FRAMEBUFFER, frame.screen_framebuffer);
     glViewport(0, 0, full.width, full.height);
-    scaled_.finish();
+    scaled_.finish(full, content, background_);
   }
 }
 

@@ -41,12 +41,19 @@ class Scene {
   // origin, the sound cue and every element's hash_state() -- to `hash`
   // (tests/arm64 compares builds with it). Not for the frame loop.
   void hash_state(StateHash& hash) const;
+  // Drawn at a reduced size: the screen pixels the last draw() scaled up
+  // (the rest it cleared to the background). Tests compare it against
+  // scaling up everything (`scale_up_whole`), as when no element says where
+  // it draws.
+  PixelBox last_scaled_up() const { return scaled_.last_scaled_up(); }
+  void scale_up_whole(bool whole) { scale_up_whole_ = whole; }
 
  private:
   Vec3 background_;
   CameraDesc camera_;
   WindField wind_;
-  ScaledRender scaled_;       // [display] render_scale / render_max_height
+  ScaledRender scaled_;  // [display] render_scale / render_max_height
+  bool scale_up_whole_ = false;
   SceneResources resources_;  // before elements_: outlives every element
   std::vector<std::unique_ptr<Element>> elements_;
   size_t failed_ = 0;

@@ -308,10 +308,49 @@ void EigenRenderer::cache_frames(std::span<const float> frame_weights, int frame
 
 void EigenRenderer::prepare() { batch_->render(); }
 
+namespace {
+// The billboard's +u direction: the camera's right, level (eigenflame.vert
+// turns the flame about the vertical only).
+Vec3 billboard_right(const Mat4& view) {
+  const Vec3 right{view.at(0, 0), 0.0f, view.at(0, 2)};
+  return length(right) > 1e-6f ? normalize(right) : Vec3{1, 0, 0};
+}
+}  // namespace
+
+void EigenRenderer::add_bounds(const Mat4& view, const FlamePose& pose, Box3& box) const {
+  // eigenflame.vert's positions, in flame-image heights: x across (along
+  // `right`), y up. Linear in uv within a shape row, and the rows' centres
+  // and widths interpolate linearly between the rows, so the extremes lie
+  // at the rows' ends.
+  const float mx = job_.margin_x, my = job_.margin_y;
+  const float aspect = static_cast<float>(recon_->width()) / recon_->height();
+  float x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  if (pose.deform) {
+    x0 = INFINITY;
+    x1 = -INFINITY;
+    for (int i = 0; i <= FlamePose::kShapeRows; ++i) {
+      const float c = pose.shape[2 * i], w = std::abs(pose.shape[2 * i + 1]);
+      x0 = std::min(x0, c - (0.5f + mx) * w);
+      x1 = std::max(x1, c + (0.5f + mx) * w);
+    }
+    const float a = pose.base - my * pose.height_factor;
+    const float b = pose.base + (1.0f + my) * pose.height_factor;
+    y0 = std::min(a, b);
+    y1 = std::max(a, b);
+  } else {
+    x1 = (0.5f + mx) * aspect * pose.widen;
+    x0 = -x1;
+    y0 = -my;
+    y1 = 1.0f + my;
+  }
+  const Vec3 right = billboard_right(view);
+  for (float x : {x0, x1})
+    for (float y : {y0, y1}) box.add(pose.origin + (right * x + Vec3{0, y, 0}) * pose.height);
+}
+
 void EigenRenderer::composite(const Mat4& view, const Mat4& view_projection,
                               const FlamePose& pose) {
-  Vec3 right{view.at(0, 0), 0.0f, view.at(0, 2)};
-  right = length(right) > 1e-6f ? normalize(right) : Vec3{1, 0, 0};
+  const Vec3 right = billboard_right(view);
   const float aspect = static_cast<float>(recon_->width()) / recon_->height();
   const EigenBatch::FlameUniforms& u = batch_->flame_uniforms();
   batch_->flame_program().use();

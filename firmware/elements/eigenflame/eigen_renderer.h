@@ -194,6 +194,9 @@ class EigenRenderer {
   void prepare();
   // Adds the flame and its glow onto the bound framebuffer.
   void composite(const Mat4& view, const Mat4& view_projection, const FlamePose& pose);
+  // Grows `box` (world) to hold what composite() draws for `pose`: the
+  // billboard eigenflame.vert makes, its glow's margin included.
+  void add_bounds(const Mat4& view, const FlamePose& pose, Box3& box) const;
   const EigenReconstructor& reconstructor() const { return *recon_; }
   // The model's frames (rows of `stride` weights), for the frame cache
   // (EigenReconstructor::enable_cache); then set_frame names the frame the

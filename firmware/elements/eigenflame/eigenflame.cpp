@@ -279,16 +279,22 @@ class EigenFlame final : public Element {
     if (pass == DrawPass::kBody && embers_.id()) draw_embers(f);
     if (pass != DrawPass::kFlame) return;
     FlamePose pose;
-    pose.origin = position_;
-    pose.height = s_.height;
-    pose.widen = s_.widen;
-    pose.light = light_.to_float();
-    if (shape_) {
-      pose.deform = true;
-      shape_->pose({shown_.data(), static_cast<size_t>(shape_->dim())},
-                   wind_x_.to_float() * s_.wind_bend.to_float(), pose);
-    }
+    pose_now(pose);
     renderer_->composite(f.view, f.view_projection, pose);
+  }
+
+  // The flame's billboard (its glow's margin included) and the ember bed.
+  bool drawn_bounds(const FrameContext& f, Box3& box) const override {
+    FlamePose pose;
+    pose_now(pose);
+    renderer_->add_bounds(f.view, pose, box);
+    if (embers_.id()) {
+      const Vec3 c{position_.x, position_.y + 0.002f, position_.z};
+      const float hw = s_.embers.width * 0.5f, hd = s_.embers.depth * 0.5f;
+      box.add(c + Vec3{-hw, 0, -hd});
+      box.add(c + Vec3{hw, 0, hd});
+    }
+    return true;
   }
 
  private:
@@ -299,6 +305,19 @@ class EigenFlame final : public Element {
     edited_.resize(base.size());  // the same size every frame: no reallocation after the first
     apply_weight_edits(base, model_->sigma, s_.weights, edited_);
     return edited_;
+  }
+
+  // The pose the flame pass draws this frame.
+  void pose_now(FlamePose& pose) const {
+    pose.origin = position_;
+    pose.height = s_.height;
+    pose.widen = s_.widen;
+    pose.light = light_.to_float();
+    if (shape_) {
+      pose.deform = true;
+      shape_->pose({shown_.data(), static_cast<size_t>(shape_->dim())},
+                   wind_x_.to_float() * s_.wind_bend.to_float(), pose);
+    }
   }
 
   void draw_embers(const FrameContext& f) {

@@ -243,6 +243,22 @@ class Hearth final : public Element {
   // or the screen's size changed.
   void prepare(const FrameContext& f) override { refresh_cache(f); }
 
+  // The bed and the logs (hearth_log.vert's knobbly radius is at most 1.12
+  // times the log's); a firebox fills the view, so no bound then.
+  bool drawn_bounds(const FrameContext&, Box3& box) const override {
+    if (firebox_vertices_ > 0) return false;
+    if (s_.embers > 0) {
+      const Vec3 c{position_.x, position_.y + 0.001f, position_.z};
+      box.add(c + Vec3{-s_.width * 0.5f, 0, -s_.depth * 0.5f});
+      box.add(c + Vec3{s_.width * 0.5f, 0, s_.depth * 0.5f});
+    }
+    for (const LogDesc& d : s_.logs) {
+      box.add(d.from + position_, d.radius * 1.15f);
+      box.add(d.to + position_, d.radius * 1.15f);
+    }
+    return true;
+  }
+
   void draw(const FrameContext& f, DrawPass pass) override {
     if (pass == DrawPass::kOverlay) {
       draw_logs(f, back_count_, log_count_ - back_count_);
