@@ -102,7 +102,6 @@ double compare_with_whole(SceneDesc desc, const char* what) {
     int differ = 0;
     for (size_t i = 0; i < part.rgba.size(); ++i) differ += part.rgba[i] != whole.rgba[i];
     EXPECT_EQ(differ, 0) << "bytes differ from the whole scale-up";
-    if (differ) part.save_png("scaled_render_part.png"), whole.save_png("scaled_render_whole.png");
     double lit = 0;  // something to compare: the scene is drawn
     for (int y = 0; y < kH; ++y)
       for (int x = 0; x < kW; ++x) lit += whole.luma(x, y) > 40;
