@@ -289,7 +289,7 @@ class EigenFlame final : public Element {
     pose_now(pose);
     renderer_->add_bounds(f.view, pose, box);
     if (embers_.id()) {
-      const Vec3 c{position_.x, position_.y + 0.002f, position_.z};
+      const Vec3 c = embers_centre();
       const float hw = s_.embers.width * 0.5f, hd = s_.embers.depth * 0.5f;
       box.add(c + Vec3{-hw, 0, -hd});
       box.add(c + Vec3{hw, 0, hd});
@@ -320,10 +320,14 @@ class EigenFlame final : public Element {
     }
   }
 
+  // The ember bed's quad (floor_quad.vert) lies just above the floor.
+  Vec3 embers_centre() const { return {position_.x, position_.y + 0.002f, position_.z}; }
+
   void draw_embers(const FrameContext& f) {
     embers_.use();
     glUniformMatrix4fv(ue_[0], 1, GL_FALSE, f.view_projection.m);
-    glUniform3f(ue_[1], position_.x, position_.y + 0.002f, position_.z);
+    const Vec3 c = embers_centre();
+    glUniform3f(ue_[1], c.x, c.y, c.z);
     glUniform2f(ue_[2], s_.embers.width * 0.5f, s_.embers.depth * 0.5f);
     glUniform1f(ue_[3], static_cast<float>(time_.to_double()));
     glUniform3f(ue_[4], s_.embers.colour.x, s_.embers.colour.y, s_.embers.colour.z);

@@ -248,7 +248,7 @@ class Hearth final : public Element {
   bool drawn_bounds(const FrameContext&, Box3& box) const override {
     if (firebox_vertices_ > 0) return false;
     if (s_.embers > 0) {
-      const Vec3 c{position_.x, position_.y + 0.001f, position_.z};
+      const Vec3 c = bed_centre();
       box.add(c + Vec3{-s_.width * 0.5f, 0, -s_.depth * 0.5f});
       box.add(c + Vec3{s_.width * 0.5f, 0, s_.depth * 0.5f});
     }
@@ -459,9 +459,13 @@ class Hearth final : public Element {
       throw RuntimeError("hearth: ember cache framebuffer incomplete");
   }
 
+  // The ember bed's quad (floor_quad.vert) lies just above the floor.
+  Vec3 bed_centre() const { return {position_.x, position_.y + 0.001f, position_.z}; }
+
   void set_bed_quad(const FrameContext& f, GLint vp, GLint centre, GLint half) const {
     glUniformMatrix4fv(vp, 1, GL_FALSE, f.view_projection.m);
-    glUniform3f(centre, position_.x, position_.y + 0.001f, position_.z);
+    const Vec3 c = bed_centre();
+    glUniform3f(centre, c.x, c.y, c.z);
     glUniform2f(half, s_.width * 0.5f, s_.depth * 0.5f);
   }
 
