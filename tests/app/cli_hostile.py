@@ -244,7 +244,11 @@ def case_full_disk():
     os.mkdir(disk)
     out = os.path.join(disk, "fire.mp4")
     seen_cut = False
-    for size in ("400k", "900k", "1300k", "1700k", "4m"):
+    # Fill points across the writes: mid-video, at the index (about 1.0-1.1 MB
+    # with this scene's fire model: its 0.75 MB video and the muxer's work),
+    # at the muxing with sound, and room to spare. A new fire model changes
+    # the video's size: move the second and third when this check fails.
+    for size in ("400k", "900k", "1050k", "1300k", "1700k", "4m"):
         # The video is copied out of the namespace's tmpfs before it goes.
         script = ('mount -t tmpfs -o size=%s tmpfs "$1" && shift && "$@"; rc=$?; '
                   'cp "%s" "%s" 2>/dev/null; exit $rc') % (size, out, os.path.join(WORK, "fire.mp4.kept"))

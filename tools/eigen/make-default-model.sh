@@ -6,7 +6,7 @@
 #       which measures inside the real candles' range): 20 s calm, 20 s with
 #       breezes to the right, 20 s to the left (tools/eigen/candle-dataset/),
 #       rendered headless at 60 fps, then ingested and built;
-#   firmware/models/fire.cmodel     a log fire ("builtin:fire"): five
+#   firmware/models/fire.cmodel     a log fire ("builtin:fire"): eight
 #       independent 2-D simulations (`tongues` preset: MacCormack advection,
 #       vorticity confinement, turbulent fuel burning to heat) side by side
 #       and in depth on one canvas (after Horvath and Geiger), rendered as a
@@ -23,7 +23,7 @@
 #   the candle clips, 120 fire frames, fewer components: both models in 1.5
 #   CPU minutes, under 3 minutes beside a test run on a 2-core machine); its
 #   models are for measuring, never for firmware/models. Full size: both in
-#   6.5 minutes (the candle 4.7, the fire 1.8).
+#   7.6 minutes (the candle 4.7, the fire 2.9).
 set -eu
 size=${SIZE:-full}
 case $size in
@@ -76,41 +76,47 @@ for kind in $which; do
     ls -l "$out/default.cmodel"
     ;;
   fire)
-    # Five slices of a few tongues each, over a fuel bed; 10 s at 30 fps.
+    # Eight slices of a few tongues each, over a fuel bed; 10 s at 30 fps.
     # The visible flame is the hot gas, not only where fuel burns (soot 5:
     # with soot 90 only the burning fuel glowed, and the vortices drew it
-    # into thin ribbons, issue 35), at a low exposure (3), so tongues are
-    # broad bodies with a clipped core and crisp edges; buoyancy 1.6 (was
-    # 2.6) lets them rise slowly enough to stay whole. Slices 0.53 widths
-    # apart: nearer, their tongues merged into one sheet; further, the fire
-    # broke into more pieces than a real one (c2st and flame_features over
-    # the soot, spacing and glow: tests/realism/CMakeLists.txt).
-    # Fuel that burns slowly (burn-rate 3) is carried up and burns in pockets
-    # that detach; each slice's light flickers on its own (1/f, the small
-    # pockets the 2-D grid cannot resolve); each slice's clock runs at its own
-    # rate (0.7-1.3: tongues of many sizes puff at many frequencies, so the
-    # brightness spectrum has no single peak); each slice's light fades out at
-    # its grid's sides and (where inside the canvas) top, so no tongue ends on
-    # a straight line; the shutter is open for the last of the three substeps
-    # only (averaging all three showed fast tongues as three stacked copies);
-    # the camera's glow joins tongues that nearly touch and its haze gives
-    # them video's dim envelope. Scenes play it at speed 1.6 (see
-    # eigen-fireplace.toml).
-    "$tool" simulate -q --preset tongues --slices 5 --slice-spacing 0.53 --fuel-bed --no-fields \
-      --seed 21 --frames $fire_frames --wind 0:0 --substeps 3 --warmup 2 --render radiance \
-      --exposure 3 --knee 0.65 --soot 5 --buoyancy 1.6 --burn-rate 3 --slice-flicker 0.08 --slice-rates 0.3 \
-      --slice-edge-fade 0.08 --shutter 0.34 --glow 0.16 --glow-radius 4 --haze 0.1 --haze-radius 10 --name fire-calm --out fire-calm
+    # into thin ribbons, issue 35), through a camera's exposure (4) with a
+    # soft clip, so tongues are broad bodies with a clipped core and crisp
+    # edges. What turned the curling ribbons into tongues (issue 35): the gas
+    # rises slowly (buoyancy 0.75) and cools fast (6000 K/s), so a tongue
+    # ends in a point instead of trailing a long wisp; its fuel burns
+    # quickly (burn-rate 8), so flame stays near the wood; vortices
+    # confined harder (7) break its edges into licks. Eight slices 0.4
+    # widths apart make one dense, many-tongued fire (with five, the fire
+    # broke into fewer pieces than a real one, and its sway spectrum was a
+    # single plume's); each slice's light flickers on its own (0.3, 1/f: the
+    # small pockets the 2-D grid cannot resolve, and the fire's breathing);
+    # each slice's clock runs at its own rate (0.7-1.3: tongues of many
+    # sizes puff at many frequencies, so the brightness spectrum has no
+    # single peak); each slice's light fades out at its grid's sides and
+    # (where inside the canvas) top, so no tongue ends on a straight line;
+    # the shutter is open for the last of the three substeps only (averaging
+    # all three showed fast tongues as three stacked copies); a faint glow
+    # joins tongues that nearly touch (a stronger one blurred their edges
+    # into a smooth, too-steep spatial spectrum) and the haze gives them
+    # video's dim envelope. Seed 22: with 21 the same recipe's fire broke
+    # into too few pieces at the edges (c2st and flame_features over the
+    # cooling, slices, flicker, glow and seed: issue 35's notes). Scenes play
+    # it at speed 1.45-1.75 with detail_scale 1.2 (see eigen-fireplace.toml).
+    "$tool" simulate -q --preset tongues --slices 8 --slice-spacing 0.4 --fuel-bed --no-fields \
+      --seed 22 --frames $fire_frames --wind 0:0 --substeps 3 --warmup 2 --render radiance \
+      --exposure 4 --knee 0.65 --soot 5 --buoyancy 0.75 --cooling 6000 --vorticity 7 --burn-rate 8 \
+      --slice-flicker 0.3 --slice-rates 0.3 --slice-edge-fade 0.08 --shutter 0.34 \
+      --glow 0.08 --glow-radius 4 --haze 0.1 --haze-radius 10 --name fire-calm --out fire-calm
     # One clip, no labels, no background level taken off (the simulation's
     # black is black; the haze is the picture). An EigenFire per frame (300
-    # at 128x160; the runtime plays up to 512): five independent fires are
-    # hard to compress (PSNR 24 dB at 128, 33.6 dB at 256), and what 256 left
-    # out showed as a mottled orange grain in the haze between the tongues.
-    # A faint glow of its own (0.05 of radius 0.015) joins tongues that nearly
-    # touch, as the truncation's haze did.
+    # at 128x160; the runtime plays up to 512): eight independent fires are
+    # hard to compress, and what fewer components left out showed as a
+    # mottled orange grain in the haze between the tongues. No glow of its
+    # own: the simulation's camera has one, and more softened the edges.
     "$tool" ingest fire-calm --force --out fire-dataset --width 128 --height 160 --threshold 0
     "$tool" build fire-dataset --out "$out/fire.cmodel" --components $fire_components \
       --bits 8 --holdout 0 --report fire-report --hue 26 --saturation 0.95 \
-      --glow-strength 0.05 --glow-radius 0.015
+      --glow-strength 0
     ls -l "$out/fire.cmodel"
     ;;
   *) echo "make-default-model: unknown model \"$kind\" (candle or fire)" >&2; exit 2 ;;

@@ -803,7 +803,7 @@ TEST(Studio, AJointsMethodIsSavedAndTheStoryPassesItsSeamCheck) {
 
 TEST(Studio, AddingDeletingAndMovingSegmentsReplansTheStory) {
   // Every joint a cut: the story is exactly its segments' frames
-  // (120 + 2 x 150 + 120 + 6 s of walk at 30 fps = 720).
+  // (135 + 2 x 135 + 135 + 6 s of walk at 30 fps = 720).
   const std::string cuts =
       "pause\nstory method 0 cut\nstory method 1 cut\nstory method 2 cut\nstory method 3 cut\n";
   const std::string saved = work("moved-story.toml");
@@ -823,7 +823,7 @@ TEST(Studio, AddingDeletingAndMovingSegmentsReplansTheStory) {
   const candela::story::StoryDesc d = candela::story::load_story_file(saved);
   ASSERT_EQ(d.segments.size(), 4u);
   EXPECT_EQ(d.segments[2].to, 60) << "the added segment moved left of the last T1";
-  EXPECT_EQ(d.segments[3].to, 120);
+  EXPECT_EQ(d.segments[3].to, 135);
   // The tool plans the saved story to the studio's frame count.
   ASSERT_EQ(run(std::string(CANDELA_TOOL) + " story " + saved + " --no-render --max-seam 100"), 0)
       << log_text();
@@ -889,7 +889,7 @@ TEST(Studio, ANewStoryFromTheModelsClipsIsSavedAndPlays) {
 }
 
 TEST(Studio, TheTimelineShowsSegmentsAsWideAsTheirFrames) {
-  // All cuts: 720 frames, segment 0 the first 120, segment 1 the next 300.
+  // All cuts: 720 frames, segment 0 the first 135, segment 1 the next 270.
   ASSERT_EQ(studio(kTour, "timeline",
                    "pause\nstory method 0 cut\nstory method 1 cut\nstory method 2 cut\n"
                    "story method 3 cut\nframe 540\nwait 2\ndump " +
