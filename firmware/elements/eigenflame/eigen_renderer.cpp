@@ -207,7 +207,7 @@ bool EigenReconstructor::enable_cache(std::span<const float> frame_weights, int 
   fill_ = ReconstructProgram(program_defines() + "#define TO_CACHE\n");
   near_ = ReconstructProgram(program_defines() + "#define FROM_CACHE\n");
   cached_.assign(static_cast<size_t>(frames), false);
-  cache_weights_ = frame_weights;
+  cache_weights_.assign(frame_weights.begin(), frame_weights.end());
   cache_stride_ = stride;
   cache_frames_ = frames;
   return true;
@@ -218,8 +218,9 @@ void EigenReconstructor::cache_frame(int frame) {
   glBindFramebuffer(GL_FRAMEBUFFER, cache_fbo_.get());
   glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, cache_.get(), 0, frame);
   const std::span<const float> w =
-      cache_weights_.subspan(static_cast<size_t>(frame) * static_cast<size_t>(cache_stride_),
-                             static_cast<size_t>(components_));
+      std::span<const float>(cache_weights_)
+          .subspan(static_cast<size_t>(frame) * static_cast<size_t>(cache_stride_),
+                   static_cast<size_t>(components_));
   draw_with(fill_, w, nullptr, -1, 0, 0);
   cached_[static_cast<size_t>(frame)] = true;
 }

@@ -113,7 +113,9 @@ class EigenReconstructor {
   std::span<const float> eigen_scale_, eigen_offset_;
   // The frame cache (enable_cache).
   int cache_frames_ = 0, cache_stride_ = 0;
-  std::span<const float> cache_weights_;
+  // A copy: the weights may be a flame's own (its scene's weight edits), and
+  // the reconstructor outlives that flame when others of its model share it.
+  std::vector<float> cache_weights_;
   std::vector<bool> cached_;
   Texture cache_;
   Framebuffer cache_fbo_;

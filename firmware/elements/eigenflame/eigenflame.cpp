@@ -189,10 +189,23 @@ class EigenFlame final : public Element {
       renderer_ =
           std::make_unique<EigenRenderer>(image_stack_of(m.mean), image_stack_of(m.eigen), s.layout,
                                           e, look, edited(player_->weights()), batch);
-      // The walk shows the model's own frames: each one's reconstruction kept.
+      // The walk shows the model's own frames: each one's reconstruction kept,
+      // as the scene's weight edits show it (else every edited frame differs
+      // from its cached one in every component: the full sum each frame).
       const int stride = m.components();
-      if (stride > 0)
-        renderer_->cache_frames(m.weights, static_cast<int>(m.weights.size() / stride), stride);
+      if (stride > 0) {
+        std::span<const float> frames = m.weights;
+        std::vector<float> edited_frames;  // the cache keeps a copy
+        if (!s_.weights.identity()) {
+          edited_frames.resize(m.weights.size());
+          const size_t n = static_cast<size_t>(stride);
+          for (size_t at = 0; at + n <= m.weights.size(); at += n)
+            apply_weight_edits(frames.subspan(at, n), model_->sigma, s_.weights,
+                               std::span<float>(edited_frames).subspan(at, n));
+          frames = edited_frames;
+        }
+        renderer_->cache_frames(frames, static_cast<int>(frames.size() / stride), stride);
+      }
       renderer_->set_frame(player_->shown_frame());
     }
     if (s.embers.enabled) {
