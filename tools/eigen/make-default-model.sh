@@ -98,9 +98,10 @@ for kind in $which; do
     # all three showed fast tongues as three stacked copies); a faint glow
     # joins tongues that nearly touch (a stronger one blurred their edges
     # into a smooth, too-steep spatial spectrum) and the haze gives them
-    # video's dim envelope. Seed 22: with 21 the same recipe's fire broke
-    # into too few pieces at the edges (c2st and flame_features over the
-    # cooling, slices, flicker, glow and seed: issue 35's notes). Scenes play
+    # video's dim envelope. Seed 22: with 21 the same recipe's sway spectrum
+    # fell outside a real fire's, with 23 its pieces and breathing (c2st and
+    # flame_features over the cooling, slices, flicker, glow and seed: the
+    # closing note of stop 50, issue 35). Scenes play
     # it at speed 1.45-1.75 with detail_scale 1.2 (see eigen-fireplace.toml).
     "$tool" simulate -q --preset tongues --slices 8 --slice-spacing 0.4 --fuel-bed --no-fields \
       --seed 22 --frames $fire_frames --wind 0:0 --substeps 3 --warmup 2 --render radiance \
