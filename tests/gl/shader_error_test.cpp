@@ -31,7 +31,7 @@ TEST(ShaderErrors, RealCompileErrorNamesFileAndLine) {
     EXPECT_NE(std::string(e.what()).find("gles_shaders/broken.frag:5:"), std::string::npos)
         << e.what();
   }
-  EXPECT_NO_THROW(Program::from_library("fullscreen.vert", "test_pattern.frag"));
+  EXPECT_NO_THROW(Program::from_library("test_pattern.vert", "test_pattern.frag"));
   EXPECT_THROW(Program::from_library("fullscreen.vert", "missing.frag"), RuntimeError);
 }
 
