@@ -52,28 +52,51 @@ EglContext::EglContext(EGLDisplay display, EGLint surface_type, EGLint native_vi
     eglTerminate(display_);
     throw RuntimeError("EGL: no OpenGL ES API");
   }
-  const EGLint attrs[] = {EGL_SURFACE_TYPE,
-                          surface_type,
-                          EGL_RED_SIZE,
-                          8,
-                          EGL_GREEN_SIZE,
-                          8,
-                          EGL_BLUE_SIZE,
-                          8,
-                          EGL_ALPHA_SIZE,
-                          0,
-                          EGL_RENDERABLE_TYPE,
-                          EGL_OPENGL_ES3_BIT,
-                          EGL_NONE};
-  EGLint count = 0;
-  eglChooseConfig(display_, attrs, nullptr, 0, &count);
-  std::vector<EGLConfig> configs(static_cast<size_t>(count));
-  if (count > 0) eglChooseConfig(display_, attrs, configs.data(), count, &count);
-  for (EGLConfig c : configs) {
-    EGLint id = 0;
-    eglGetConfigAttrib(display_, c, EGL_NATIVE_VISUAL_ID, &id);
-    if (native_visual_id == 0 || id == native_visual_id) {
-      config_ = c;
+  // A depth buffer: the candles' bodies, the logs and the flames among them
+  // are depth-tested where they are drawn at the screen's own size (a scene
+  // drawn at a reduced size has its own, scene/scaled_render.h). EGL lists
+  // the smallest depth and stencil first, so this asks for at least 16 bits
+  // and gets the leanest such config; a driver without one still shows the
+  // scene, in draw order, and says so.
+  for (const EGLint depth : {16, 0}) {
+    const EGLint attrs[] = {EGL_SURFACE_TYPE,
+                            surface_type,
+                            EGL_RED_SIZE,
+                            8,
+                            EGL_GREEN_SIZE,
+                            8,
+                            EGL_BLUE_SIZE,
+                            8,
+                            EGL_ALPHA_SIZE,
+                            0,
+                            EGL_DEPTH_SIZE,
+                            depth,
+                            EGL_RENDERABLE_TYPE,
+                            EGL_OPENGL_ES3_BIT,
+                            EGL_NONE};
+    EGLint count = 0;
+    eglChooseConfig(display_, attrs, nullptr, 0, &count);
+    std::vector<EGLConfig> configs(static_cast<size_t>(count));
+    if (count > 0) eglChooseConfig(display_, attrs, configs.data(), count, &count);
+    for (EGLConfig c : configs) {
+      EGLint id = 0;
+      eglGetConfigAttrib(display_, c, EGL_NATIVE_VISUAL_ID, &id);
+      if (native_visual_id == 0 || id == native_visual_id) {
+        config_ = c;
+        break;
+      }
+    }
+    if (config_) {
+      EGLint bits = 0, stencil = 0;
+      eglGetConfigAttrib(display_, config_, EGL_DEPTH_SIZE, &bits);
+      eglGetConfigAttrib(display_, config_, EGL_STENCIL_SIZE, &stencil);
+      if (depth > 0)
+        LOG_INFO("EGL: config with a %d-bit depth buffer (stencil %d bits)", bits, stencil);
+      else
+        LOG_WARN(
+            "EGL: no config with a depth buffer%s: what is drawn at the screen's size "
+            "overlaps in draw order",
+            native_visual_id ? " matching the scan-out format" : "");
       break;
     }
   }
