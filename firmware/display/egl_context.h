@@ -14,8 +14,9 @@ bool egl_has_extension(EGLDisplay dpy, const char* name);  // dpy may be EGL_NO_
 class EglContext {
  public:
   // Takes ownership of an already obtained display: initialises it, picks an
-  // RGBA8888 config for `surface_type` (0 for surfaceless), optionally with the
-  // given native visual id (the GBM format on DRM), and creates a GLES 3 context.
+  // RGBA8888 config for `surface_type` (0 for surfaceless) with a depth buffer
+  // of at least 16 bits where the driver has one, optionally with the given
+  // native visual id (the GBM format on DRM), and creates a GLES 3 context.
   EglContext(EGLDisplay display, EGLint surface_type, EGLint native_visual_id = 0);
   ~EglContext();
   EglContext(const EglContext&) = delete;
