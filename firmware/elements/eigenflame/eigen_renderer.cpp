@@ -296,11 +296,15 @@ EigenRenderer::EigenRenderer(const ImageStack& mean, const ImageStack& eigen, St
 
 EigenRenderer::~EigenRenderer() { batch_->remove(&job_); }
 
-void EigenRenderer::cache_frames(std::span<const float> frame_weights, int frames, int stride) {
+bool EigenRenderer::wants_frame_cache() const {
   // Worth it for a long sum only: the candle model's 80 components cost 21
   // fetches a pixel, its 3600 frames 100 MB; the fire's 299, 75 fetches.
   constexpr int kCacheFromComponents = 128;
-  if (recon_->components() < kCacheFromComponents || recon_->caches()) return;
+  return recon_->components() >= kCacheFromComponents && !recon_->caches();
+}
+
+void EigenRenderer::cache_frames(std::span<const float> frame_weights, int frames, int stride) {
+  if (!wants_frame_cache()) return;
   const FramebufferRestore caller;
   if (!recon_->enable_cache(frame_weights, frames, stride))
     LOG_INFO("eigenflame: %d frames of %dx%d not cached (over 64 MiB or the GPU's layers)", frames,

@@ -202,8 +202,12 @@ class EigenRenderer {
   const EigenReconstructor& reconstructor() const { return *recon_; }
   // The model's frames (rows of `stride` weights), for the frame cache
   // (EigenReconstructor::enable_cache); then set_frame names the frame the
-  // weights are near, at each update.
+  // weights are near, at each update. Does nothing unless wants_frame_cache().
   void cache_frames(std::span<const float> frame_weights, int frames, int stride);
+  // Whether cache_frames would cache: a model with a long sum whose frames
+  // no flame sharing its reconstructor has cached yet (ask before preparing
+  // the frames' weights).
+  bool wants_frame_cache() const;
   void set_frame(int32_t frame) { job_.frame = frame; }
 
  private:

@@ -192,8 +192,10 @@ class EigenFlame final : public Element {
       // The walk shows the model's own frames: each one's reconstruction kept,
       // as the scene's weight edits show it (else every edited frame differs
       // from its cached one in every component: the full sum each frame).
+      // The edits are applied only where this flame's cache is the one made:
+      // other flames of its model share the first one's.
       const int stride = m.components();
-      if (stride > 0) {
+      if (stride > 0 && renderer_->wants_frame_cache()) {
         std::span<const float> frames = m.weights;
         std::vector<float> edited_frames;  // the cache keeps a copy
         if (!s_.weights.identity()) {
