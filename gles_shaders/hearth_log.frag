@@ -69,7 +69,11 @@ void main() {
     // out little: in a fireplace's light bark reads as dark and rough; plates
     // twice as bright as their fissures read as painted planks.
     vec3 bark = mix(u_bark, vec3(dot(u_bark, vec3(0.3, 0.5, 0.2))), 0.35);
-    colour = bark * (0.2 + 0.6 * plate * (0.6 + 0.8 * rough));
+    // From across a room the fissures are a shade darker than the plates, not
+    // black grooves: dense dark grooves read as the grain of sawn planks.
+    // Patches a hand long, lighter and darker, break the log's length.
+    float blotch = 0.75 + 0.5 * fbm(q * vec2(0.35, 0.25) + 29.0);
+    colour = bark * blotch * (0.42 + 0.42 * plate * (0.7 + 0.6 * rough));
     colour += vec3(0.05, 0.047, 0.04) * smoothstep(0.72, 0.95, noise(q * vec2(3.0, 0.8) + 41.0)) * plate;
     // Char: where the fire reaches (up, and towards the light) and along the
     // underside that lies on the coals, with a ragged edge.
@@ -109,6 +113,9 @@ void main() {
     float crack = smoothstep(seam, 0.0, cell.x) * (0.2 / seam) * char_amount;
     crack *= smoothstep(0.7, 0.9, cell.y);
     crack *= smoothstep(0.5, 0.7, fbm(q * vec2(2.0, 6.0) + 23.0)) * smoothstep(0.35, 0.8, above);
+    // A block's whole border aglow reads as a drawn ring: noise finer than a
+    // block breaks each border into one or two glowing runs.
+    crack *= smoothstep(0.45, 0.65, noise(q * vec2(6.0, 24.0) + 61.0));
     // 16 bits over two channels: the glow is bright, 8 would band it.
     float hi = floor(crack * 255.0) / 255.0;
     o_crack = vec4(hi, (crack - hi) * 255.0, cell.y, hash(vec2(cell.y * 91.0, 3.0)));

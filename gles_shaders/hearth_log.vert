@@ -25,11 +25,18 @@ void main() {
   float ang = a_mesh.y * 6.2831853;
   bool cap = a_mesh.z != 0.0;
   bool centre = abs(a_mesh.z) > 1.5;
-  // Knobbly: the radius varies slowly along and around the log.
-  float r = a_from.w * (1.0 + 0.07 * sin(a_mesh.x * 9.0 + a_to.w) + 0.05 * sin(ang * 3.0 + a_to.w * 2.0));
-  r *= 1.0 - 0.12 * smoothstep(0.9, 1.0, abs(a_mesh.x * 2.0 - 1.0));  // rounded ends
+  // Knobbly: the radius varies slowly along and around the log, with a few
+  // knots (bumps where a branch was) that a straight, even cylinder lacks.
+  float x = a_mesh.x;
+  float r = a_from.w * (1.0 + 0.07 * sin(x * 9.0 + a_to.w) + 0.05 * sin(ang * 3.0 + a_to.w * 2.0) +
+                        0.05 * sin(x * 23.0 + a_to.w * 3.0) * sin(ang * 5.0 + a_to.w));
+  r *= 1.0 - 0.12 * smoothstep(0.9, 1.0, abs(x * 2.0 - 1.0));  // rounded ends
+  // Trunks are not straight: the log bows sideways and a little up or down
+  // along its length, its ends on the line from a_from to a_to.
+  float bow = sin(3.14159265 * x);
+  vec3 bend = (u * (0.4 * sin(a_to.w * 1.7)) + v * (0.2 * cos(a_to.w * 2.3))) * a_from.w * bow;
   vec3 radial = u * cos(ang) + v * sin(ang);
-  vec3 p = a_from.xyz + axis * a_mesh.x + (centre ? vec3(0.0) : radial * r);
+  vec3 p = a_from.xyz + axis * x + bend + (centre ? vec3(0.0) : radial * r);
   v_world = p;
   v_normal = cap ? w * sign(a_mesh.z) : radial;
   v_log = vec3(a_mesh.x * len, a_mesh.y, cap ? 1.0 : 0.0);

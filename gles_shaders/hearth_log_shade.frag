@@ -24,10 +24,17 @@ void main() {
   vec3 to_light = u_light_pos - v_world;
   float d2 = dot(to_light, to_light);
   float facing = max(dot(n, normalize(to_light)), 0.0);
-  // Little light reaches what faces away from the fire (the front of a front
-  // log is a dark silhouette, as in a real fireplace); what faces it, and the
-  // tops the flames lick, flicker bright.
-  vec3 lit = u_light.rgb * (0.08 + 2.6 * facing * facing + 0.6 * max(n.y, 0.0)) / (1.0 + d2 * 2.0);
+  // What faces the fire, and the tops the flames lick, flicker bright. The
+  // fire is no point: it is as wide as the bed and its flames rise in front
+  // of the logs too, so light wraps round a log (a front log's face is dim,
+  // not black). The firebox and the other logs glow back a paler light, as a
+  // camera sees it: real logs by a fire read brown (R:G:B about 1.7:1:0.6),
+  // not the fire's own orange.
+  float wrap = max(dot(n, normalize(to_light)) + 0.7, 0.0) / 1.7;
+  // Both fall off towards the bed's ends, away from the flames.
+  float near = 1.0 / (1.0 + d2 * 5.0);
+  vec3 lit = u_light.rgb * (0.1 + 3.0 * facing * facing + 0.7 * wrap * wrap + 0.8 * max(n.y, 0.0)) * near;
+  lit += dot(u_light.rgb, vec3(0.4, 0.4, 0.2)) * vec3(1.0, 0.8, 0.66) * (0.4 + 0.25 * max(n.y, 0.0)) * near;
   // The coals under the logs light their undersides and lower flanks.
   lit += u_light.rgb * vec3(1.0, 0.6, 0.35) * (0.55 * u_light.w * max(-n.y + 0.3, 0.0));
   // Where a log lies on the coals its char is red hot: a soft glow that

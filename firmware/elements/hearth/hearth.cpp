@@ -18,7 +18,7 @@ namespace {
 
 constexpr int kMaxLogs = 12;
 constexpr int kAround = 18;  // mesh segments around a log
-constexpr int kAlong = 6;    // segments along it
+constexpr int kAlong = 16;   // segments along it: enough for a log's bends and knots
 constexpr int kLogVec4 = 2;  // per log: from + radius, to + seed
 
 struct LogDesc {

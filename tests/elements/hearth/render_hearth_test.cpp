@@ -89,6 +89,31 @@ TEST(HearthRender, LogsAreDrawnAndLitByTheFire) {
   EXPECT_EQ(measure(fb, 0, 0, 12, kH).mean, 0.0);
 }
 
+TEST(HearthRender, ALogInFrontOfTheFireReadsAsBrownWoodNotAnOrangeSilhouette) {
+  // The fire behind a log lights it as a wide light and the firebox glows
+  // back, so the log reads brown, as logs in fireplace footage do (blue about
+  // a third of red there, green about 0.55), not black and not in the fire's
+  // own saturated orange (which alone gives blue under 0.16 of red).
+  const std::string hearth =
+      "width = 0.8\ndepth = 0.4\nembers = 0\nlight_strength = 1.8\nlight_at = [0.0, 0.3, -0.25]\n"
+      "[[element.log]]\nfrom = [-0.35, 0.07, 0.1]\nto = [0.35, 0.07, 0.1]\nradius = 0.07\n";
+  test::RenderHarness h(scene(hearth), kW, kH);
+  h.run(3);
+  const test::Frame f = h.read();
+  double r = 0, g = 0, b = 0;
+  int n = 0;
+  // The log, a stretch of the middle of its length, top to bottom.
+  for (int y = kH * 46 / 100; y < kH * 62 / 100; ++y)
+    for (int x = kW / 2 - 20; x < kW / 2 + 20; ++x) {
+      const test::Rgba c = f.at(x, y);
+      r += c.r, g += c.g, b += c.b, ++n;
+    }
+  r /= n, g /= n, b /= n;
+  EXPECT_GT(r, 10.0);
+  EXPECT_GT(g / r, 0.45);
+  EXPECT_GT(b / r, 0.22);
+}
+
 TEST(HearthRender, AFrontLogHidesTheFeetOfAFire) {
   // A log across the front of the bed, and a Perlin fire standing on the bed
   // behind it: where the log crosses the fire, the log (dark wood) shows, not
