@@ -292,6 +292,16 @@ int FlameModel::clip_of(int frame) const {
   return -1;
 }
 
+size_t FlameModel::give_back_image_pages() const {
+  const auto bytes_of = [](const QuantisedImages& q) {
+    return q.pixels() * static_cast<size_t>(q.count) * (q.dtype == DType::kU8 ? 1 : 2);
+  };
+  size_t given = 0;
+  for (const QuantisedImages* q : {&mean, &eigen, &flames.mean, &flames.eigen})
+    if (q->data) given += file_.give_back_pages(q->data, bytes_of(*q));
+  return given;
+}
+
 void FlameModel::reconstruct(std::span<const float> w, std::span<float> out) const {
   const size_t n = mean.pixels();
   const int e = std::min(static_cast<int>(w.size()), components());

@@ -137,6 +137,10 @@ class FlameModel {
   int clip_of(int frame) const;
   // Gray image (0..255, not clamped) from weights (uses the first w.size() components).
   void reconstruct(std::span<const float> w, std::span<float> out) const;
+  // For a model built into the binary, once its images are on the GPU: gives
+  // their pages back (ModelFile::give_back_pages; reconstruct() still works,
+  // paging them in again). Returns the bytes given back.
+  size_t give_back_image_pages() const;
 
   QuantisedImages mean, eigen;
   std::span<const float> weights, variance;

@@ -78,6 +78,22 @@ struct ModelFile::Storage {
 
 size_t ModelFile::file_size() const { return storage_ ? storage_->size : 0; }
 
+size_t ModelFile::give_back_pages(const uint8_t* data, size_t bytes) const {
+  // Only bytes that live in the binary (read-only, file-backed): in anonymous
+  // or heap memory MADV_DONTNEED would lose them.
+  if (!storage_ || storage_->map || !storage_->owned.empty() || bytes == 0) return 0;
+  const uintptr_t begin = reinterpret_cast<uintptr_t>(data);
+  const uintptr_t lo = reinterpret_cast<uintptr_t>(storage_->data);
+  if (begin < lo || begin + bytes > lo + storage_->size) return 0;  // not this file's bytes
+  const long page_size = sysconf(_SC_PAGESIZE);
+  if (page_size <= 0) return 0;
+  const uintptr_t page = static_cast<uintptr_t>(page_size);
+  const uintptr_t first = (begin + page - 1) / page * page, end = (begin + bytes) / page * page;
+  if (end <= first) return 0;
+  if (madvise(reinterpret_cast<void*>(first), end - first, MADV_DONTNEED) != 0) return 0;
+  return end - first;
+}
+
 namespace {
 
 using Kind = ModelError::Kind;

@@ -82,6 +82,14 @@ class ModelFile {
   uint32_t checksum() const { return checksum_; }
   size_t file_size() const;
   size_t header_bytes() const { return header_bytes_; }
+  // A model built into the binary is read in place from the binary's file
+  // mapping. Once [data, data + bytes) of it has been copied where it is used
+  // (images uploaded to the GPU), the pages wholly inside that range are
+  // given back (madvise MADV_DONTNEED): the process stops holding them
+  // resident, and reading them again pages them in from the file, unchanged.
+  // Does nothing for a model read from a file or a buffer (its bytes are the
+  // only copy). Returns the bytes given back.
+  size_t give_back_pages(const uint8_t* data, size_t bytes) const;
   // The "model" object of the metadata (free-form description, checked by FlameModel).
   const nlohmann::json& info() const { return info_; }
   const std::vector<Tensor>& tensors() const { return tensors_; }

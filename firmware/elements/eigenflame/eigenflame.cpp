@@ -210,6 +210,12 @@ class EigenFlame final : public Element {
       }
       renderer_->set_frame(player_->shown_frame());
     }
+    // The images are on the GPU now: a built-in model's pages in the binary
+    // are given back (its other flames share this upload; issue 36: the eigen
+    // fireplace held 6.3 MB of them resident for its whole run).
+    if (const size_t given = m.give_back_image_pages())
+      LOG_DEBUG("eigenflame: %s: %.1f MB of the built-in model's images given back after upload",
+                model_->source.c_str(), static_cast<double>(given) / (1 << 20));
     if (s.embers.enabled) {
       embers_ =
           Program::from_library("floor_quad.vert", {"value_noise.frag", "eigenflame_embers.frag"});
