@@ -23,9 +23,11 @@ using Kind = cm::ModelError::Kind;
 
 namespace {
 
-// A small but complete model: 3 components over 8x6 pixels, 5 frames, one clip.
-cm::ModelWriter small_model(int components = 3) {
-  const int w = 8, h = 6, f = 5;
+// A small but complete model: 3 components over 8x6 pixels, 5 frames, one clip
+// (or as many components, as large and as finely quantised as asked).
+cm::ModelWriter small_model(int components = 3, int w = 8, int h = 6,
+                            cm::DType eigen_type = cm::DType::kU8) {
+  const int f = 5;
   const size_t px = static_cast<size_t>(w) * h;
   std::vector<float> mean(px), eig(components * px), weights(f * components), var(components);
   for (size_t p = 0; p < px; ++p) mean[p] = 10.0f + 3.0f * static_cast<float>(p);
@@ -56,7 +58,8 @@ cm::ModelWriter small_model(int components = 3) {
         {{"hue", 30.0}, {"saturation", 0.8}, {"glow_radius", 0.05}, {"glow_strength", 0.5}}},
        {"provenance", {{"tool", "test"}}}});
   cm::add_quantised(mw, "mean", cm::quantise_images(mean.data(), 1, px, cm::DType::kU16), 1, w, h);
-  cm::add_quantised(mw, "eigen", cm::quantise_images(eig.data(), 3, px, cm::DType::kU8), 3, w, h);
+  cm::add_quantised(mw, "eigen", cm::quantise_images(eig.data(), components, px, eigen_type),
+                    components, w, h);
   mw.add_f32("weights", {f, components}, weights);
   mw.add_f32("variance", {components}, var);
   mw.add_i32("graph.offsets", {f + 1}, offsets);
@@ -469,33 +472,8 @@ TEST(ModelFile, SpecialAndHugeFilesAreRefusedBeforeReading) {
 // is its own only copy and is left alone.
 namespace {
 
-cm::ModelWriter large_model() {
-  const int w = 128, h = 160, f = 5, components = 48;
-  const size_t px = static_cast<size_t>(w) * h;
-  std::vector<float> mean(px), eig(components * px), weights(f * components), var(components);
-  for (size_t p = 0; p < px; ++p) mean[p] = 40.0f + 0.01f * static_cast<float>(p % 977);
-  for (int k = 0; k < components; ++k)
-    for (size_t p = 0; p < px; ++p)
-      eig[k * px + p] = std::sin(0.013f * static_cast<float>(p * (k + 1)));
-  for (int i = 0; i < f * components; ++i) weights[i] = 0.25f * static_cast<float>(i % 7) - 0.5f;
-  for (int k = 0; k < components; ++k) var[k] = 10.0f / static_cast<float>(k + 1);
-  // small_model's description, graph and clip, at the built-in fire model's image size.
-  nlohmann::json info = cm::ModelFile::from_bytes(small_model().bytes(), "m").info();
-  info["width"] = w, info["height"] = h, info["components"] = components;
-  std::vector<int32_t> offsets{0, 1, 3, 4, 5, 6}, succ{1, 2, 4, 3, 4, 0};
-  std::vector<float> cost{1, 1, 2, 1, 1, 3};
-  cm::ModelWriter mw;
-  mw.set_info(info);
-  cm::add_quantised(mw, "mean", cm::quantise_images(mean.data(), 1, px, cm::DType::kU16), 1, w, h);
-  cm::add_quantised(mw, "eigen", cm::quantise_images(eig.data(), components, px, cm::DType::kU16),
-                    components, w, h);
-  mw.add_f32("weights", {f, components}, weights);
-  mw.add_f32("variance", {components}, var);
-  mw.add_i32("graph.offsets", {f + 1}, offsets);
-  mw.add_i32("graph.successors", {6}, succ);
-  mw.add_f32("graph.cost", {6}, cost);
-  return mw;
-}
+// At the built-in fire model's image size.
+cm::ModelWriter large_model() { return small_model(48, 128, 160, cm::DType::kU16); }
 
 // Resident bytes of this process (/proc/self/statm).
 size_t resident_bytes() {
