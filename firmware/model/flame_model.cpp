@@ -294,7 +294,7 @@ int FlameModel::clip_of(int frame) const {
 
 size_t FlameModel::give_back_image_pages() const {
   const auto bytes_of = [](const QuantisedImages& q) {
-    return q.pixels() * static_cast<size_t>(q.count) * (q.dtype == DType::kU8 ? 1 : 2);
+    return q.pixels() * static_cast<size_t>(q.count) * dtype_size(q.dtype);
   };
   size_t given = 0;
   for (const QuantisedImages* q : {&mean, &eigen, &flames.mean, &flames.eigen})

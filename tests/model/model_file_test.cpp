@@ -500,7 +500,8 @@ TEST(FlameModel, ABuiltInModelGivesItsImagePagesBackAndStillReconstructs) {
   {
     const cm::FlameModel m = cm::FlameModel::from(
         cm::ModelFile::from_static({static_cast<const char*>(map), size}, "built-in"));
-    const size_t image_bytes = m.eigen.pixels() * static_cast<size_t>(m.eigen.count) * 2;
+    const size_t image_bytes =
+        m.eigen.pixels() * static_cast<size_t>(m.eigen.count) * cm::dtype_size(m.eigen.dtype);
     std::vector<float> before(m.eigen.pixels()), after(m.eigen.pixels());
     m.reconstruct(m.weights_of(3), before);  // reads every image: all resident now
     const size_t held = resident_bytes();
