@@ -15,6 +15,7 @@ uniform float u_time;
 uniform sampler2D u_colour;  // the cache: unlit colour
 uniform sampler2D u_crack;   // crack glow (hi, lo), pulse hashes
 uniform ivec2 u_origin;      // the viewport's origin (the cache starts there)
+uniform vec3 u_camera;       // world space
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy) - u_origin;
@@ -34,7 +35,14 @@ void main() {
   // Both fall off towards the bed's ends, away from the flames.
   float near = 1.0 / (1.0 + d2 * 5.0);
   vec3 lit = u_light.rgb * (0.1 + 3.0 * facing * facing + 0.7 * wrap * wrap + 0.8 * max(n.y, 0.0)) * near;
-  lit += dot(u_light.rgb, vec3(0.4, 0.4, 0.2)) * vec3(1.0, 0.8, 0.66) * (0.4 + 0.25 * max(n.y, 0.0)) * near;
+  // The paler fill comes from above (the lit firebox and the flames over the
+  // bed), so a log's face darkens from its top down to its underside, and
+  // towards its outline, where the surface turns away from the camera: the
+  // shading that makes it read round, not a flat plank.
+  float from_above = smoothstep(-0.7, 0.8, n.y);
+  float turned = max(dot(n, normalize(u_camera - v_world)), 0.0);
+  lit += dot(u_light.rgb, vec3(0.4, 0.4, 0.2)) * vec3(1.0, 0.84, 0.74) *
+         (0.06 + 0.64 * from_above) * (0.35 + 0.65 * turned) * near;
   // The coals under the logs light their undersides and lower flanks.
   lit += u_light.rgb * vec3(1.0, 0.6, 0.35) * (0.55 * u_light.w * max(-n.y + 0.3, 0.0));
   // Where a log lies on the coals its char is red hot: a soft glow that
@@ -46,5 +54,13 @@ void main() {
   float pulse = 0.6 + 0.4 * sin(u_time * (1.3 + k.z * 2.0) + k.w * 6.28);
   float glow = crack * pulse * u_light.w;
   vec3 ember = vec3(1.0, 0.32, 0.05) * glow * 1.6 + vec3(1.0, 0.7, 0.3) * pow(glow, 3.0) * 0.6;
-  o_color = vec4(colour * (lit + vec3(0.03)) + ember + hot * (0.3 + colour), 1.0);
+  // Backlit by the flames, a log's outline on the fire's side catches a
+  // little of their light along its top edge (char and ash have a dull
+  // sheen, so it does not take the surface's colour). Faint: in footage a
+  // front log is dark, and a bright rim (4x this) joined the logs and the
+  // flames into one solid lit mass (c2st.py: the eigen fireplace's d' 5.9
+  // went to 6.5, beyond the real fires).
+  float rim = pow(1.0 - turned, 3.0) * smoothstep(-0.1, 0.7, dot(n, normalize(to_light)));
+  vec3 sheen = u_light.rgb * vec3(1.0, 0.72, 0.48) * rim * near;
+  o_color = vec4(colour * (lit + vec3(0.03)) + ember + hot * (0.3 + colour) + sheen, 1.0);
 }

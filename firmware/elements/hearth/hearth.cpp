@@ -162,7 +162,7 @@ class Hearth final : public Element {
     ul_ = {u(logs_prog_, "u_view_projection"), u(logs_prog_, "u_light_pos"),
            u(logs_prog_, "u_light"),           u(logs_prog_, "u_time"),
            u(logs_prog_, "u_colour"),          u(logs_prog_, "u_crack"),
-           u(logs_prog_, "u_origin")};
+           u(logs_prog_, "u_origin"),          u(logs_prog_, "u_camera")};
     ubc_ = {u(bed_cache_prog_, "u_view_projection"), u(bed_cache_prog_, "u_centre"),
             u(bed_cache_prog_, "u_half"), u(bed_cache_prog_, "u_seed")};
     ub_ = {u(bed_prog_, "u_view_projection"),
@@ -513,6 +513,7 @@ class Hearth final : public Element {
     glUniform1i(ul_[5], 1);
     glActiveTexture(GL_TEXTURE0);
     glUniform2i(ul_[6], cache_key_.viewport[0], cache_key_.viewport[1]);
+    glUniform3f(ul_[7], f.camera_position.x, f.camera_position.y, f.camera_position.z);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     // Instances [first, first + count).
@@ -534,7 +535,7 @@ class Hearth final : public Element {
   Buffer mesh_vbo_, inst_vbo_;
   GLsizei vertex_count_ = 0, log_count_ = 0;
   std::array<GLint, 3> ulc_{};
-  std::array<GLint, 7> ul_{};
+  std::array<GLint, 8> ul_{};
   GLsizei back_count_ = 0;  // logs [0, back_count_) behind the flames, the rest in front
   std::array<GLint, 4> ubc_{};
   std::array<GLint, 8> ub_{};

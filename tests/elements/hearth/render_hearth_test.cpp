@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "scene/scene_file.h"
@@ -107,6 +108,36 @@ TEST(HearthRender, ALogInFrontOfTheFireReadsAsBrownWoodNotAnOrangeSilhouette) {
   EXPECT_GT(log.r, 10.0);
   EXPECT_GT(log.g / log.r, 0.45);
   EXPECT_GT(log.b / log.r, 0.22);
+}
+
+TEST(HearthRender, AFrontLogIsShadedRoundLightAlongItsTopDarkUnderneath) {
+  // A log between the camera and the fire is lit from behind and above: its
+  // top catches the flames' light and the firebox's, and its face darkens
+  // from there down to its underside, as a round log does. An evenly lit
+  // face reads as a plank (it did: the top fifth 2.5x the lower half).
+  const std::string hearth =
+      "width = 0.8\ndepth = 0.4\nembers = 0\nlight_strength = 1.8\nlight_at = [0.0, 0.3, -0.25]\n"
+      "[[element.log]]\nfrom = [-0.35, 0.07, 0.1]\nto = [0.35, 0.07, 0.1]\nradius = 0.07\n";
+  constexpr int w = 320, h = 180;
+  test::RenderHarness r(scene(hearth), w, h);
+  r.run(3);
+  const test::Frame f = r.read();
+  // The log's rows (a stretch of the middle of its length): where anything is drawn.
+  int top = -1, bottom = -1;
+  std::vector<double> rows(h);
+  for (int y = 0; y < h; ++y) {
+    rows[y] = measure(f, w / 2 - 40, y, w / 2 + 40, y + 1).mean;
+    if (rows[y] <= 0.5) continue;
+    if (top < 0) top = y;
+    bottom = y;
+  }
+  ASSERT_GT(bottom - top, 20) << "the log is about 27 rows tall here";
+  const int span = bottom - top + 1;
+  double upper = 0, lower = 0;
+  for (int y = top; y < top + span / 5; ++y) upper += rows[y] / (span / 5);
+  for (int y = top + span / 2; y <= bottom; ++y) lower += rows[y] / (bottom + 1 - top - span / 2);
+  EXPECT_GT(upper, 2.9 * lower) << "the top fifth against the lower half";
+  EXPECT_GT(lower, 2.0) << "the underside dim, not black";
 }
 
 TEST(HearthRender, AFrontLogHidesTheFeetOfAFire) {
