@@ -17,6 +17,7 @@ uniform float u_brightness;
 uniform float u_glow_strength;
 uniform vec3 u_glow_tint;
 uniform float u_edge_fade;  // share of the image's width (sides) and height (top) faded out
+uniform vec2 u_foot_fade;   // heights (0 bottom, 1 top) over which the foot fades in; (0, 0): none
 in vec2 v_uv;  // over this flame's sprite region, top row first
 out vec4 o_colour;
 
@@ -33,6 +34,8 @@ void main() {
     // clipped it) would end on a straight line: fade it out there instead.
     if (u_edge_fade > 0.0)
       g *= smoothstep(0.0, u_edge_fade, min(min(q.x, 1.0 - q.x), q.y));
+    // A model's own bed and logs, where the scene draws its own (a hearth).
+    if (u_foot_fade.y > 0.0) g *= smoothstep(u_foot_fade.x, u_foot_fade.y, 1.0 - q.y);
     c = texture(u_ramp, vec2(g * (255.0 / 256.0) + 0.5 / 256.0, 0.5)).rgb * u_brightness;
   }
   if (u_glow_strength > 0.0)

@@ -258,6 +258,8 @@ EigenRenderer::EigenRenderer(const ImageStack& mean, const ImageStack& eigen, St
   j.brightness = look.brightness;
   j.glow_strength = look.glow_strength;
   j.edge_fade = look.edge_fade;
+  j.foot_fade[0] = look.foot_fade[0];
+  j.foot_fade[1] = look.foot_fade[1];
   // Glow at half size, padded by its radius on every side.
   const int half_w = (w + 1) / 2, half_h = (h + 1) / 2;
   const int radius = std::clamp(static_cast<int>(std::ceil(look.glow_radius * half_h)), 1, 32);
@@ -417,9 +419,9 @@ EigenBatch::EigenBatch() {
          cells_program_.uniform("u_origin"), cells_program_.uniform("u_cells")};
   sprite_program_ = Program::from_library("fullscreen.vert", "eigenflame_sprite.frag");
   const auto v = [&](const char* n) { return sprite_program_.uniform(n); };
-  us_ = {v("u_gray"),      v("u_glow"),     v("u_ramp"),       v("u_gray_rect"),
-         v("u_glow_rect"), v("u_margin"),   v("u_brightness"), v("u_glow_strength"),
-         v("u_glow_tint"), v("u_edge_fade")};
+  us_ = {v("u_gray"),      v("u_glow"),      v("u_ramp"),       v("u_gray_rect"),
+         v("u_glow_rect"), v("u_margin"),    v("u_brightness"), v("u_glow_strength"),
+         v("u_glow_tint"), v("u_edge_fade"), v("u_foot_fade")};
 
   // The billboard grid: kGridColumns x kShapeRows cells over the glow-padded
   // area, two triangles a cell, each vertex with its cell's index (a cell
@@ -602,6 +604,7 @@ void EigenBatch::render() {
     glUniform1f(us_.glow_strength, j->glow_strength);
     glUniform3f(us_.glow_tint, j->glow_tint.x, j->glow_tint.y, j->glow_tint.z);
     glUniform1f(us_.edge_fade, j->edge_fade);
+    glUniform2f(us_.foot_fade, j->foot_fade[0], j->foot_fade[1]);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
   // 4. Which cells of each billboard add any light.

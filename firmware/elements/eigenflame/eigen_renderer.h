@@ -127,6 +127,9 @@ struct FlameLookSettings {
   float glow_radius = 0.12f;  // fraction of the flame image's height
   float glow_strength = 0.6f;
   float edge_fade = 0.05f;  // sides and top faded over this share of the image
+  // Heights (0 bottom .. 1 top of the image) between which its foot fades in:
+  // nothing below the first, all of it above the second (0, 0: no fade).
+  float foot_fade[2] = {0, 0};
 };
 
 // The flame's pose and shape for one frame.
@@ -155,6 +158,7 @@ struct EigenSpriteJob {
   int32_t frame = -1;              // the model frame the weights are near (-1: none)
   GLuint ramp = 0;                 // 256x1 colour ramp texture
   float brightness = 1, glow_strength = 0, edge_fade = 0;
+  float foot_fade[2] = {0, 0};
   int glow_w = 0, glow_h = 0;          // half size, padded by the glow's radius
   static constexpr int kMaxTaps = 17;  // eigenflame_glow.frag's MAX_TAPS
   int taps = 1;                        // centre + bilinear pairs
@@ -274,7 +278,7 @@ class EigenBatch final : public SceneResource {
   } ug_{};
   struct {
     GLint gray, glow, ramp, gray_rect, glow_rect, margin, brightness, glow_strength, glow_tint,
-        edge_fade;
+        edge_fade, foot_fade;
   } us_{};
   FlameUniforms uf_{};
 };

@@ -149,6 +149,8 @@ class EigenFlame final : public Element {
     look.glow_radius = s.has_glow_radius ? s.glow_radius : std::max(0.02f, m.colour.glow_radius);
     look.glow_strength = s.has_glow_strength ? s.glow_strength : m.colour.glow_strength;
     look.edge_fade = s.edge_fade;
+    look.foot_fade[0] = s.foot_fade[0];
+    look.foot_fade[1] = s.foot_fade[1];
     const int e = s.components > 0 ? s.components : EigenReconstructor::kMaxComponents;
 
     if (s.driver == EigenDriver::kStory && story) {
@@ -476,6 +478,14 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
   s.speed = r.fixed("speed", 1.0, 0.05, 8.0);
   s.crossfade = r.fixed("crossfade", s.crossfade.to_double(), 0, 1);
   s.edge_fade = static_cast<float>(r.number("edge_fade", s.edge_fade, 0, 0.5));
+  if (r.has("foot_fade")) {
+    const auto foot = r.numbers("foot_fade", 0, 1, 2);
+    if (foot.size() != 2 || !(foot[0] < foot[1]))
+      r.fail("foot_fade",
+             "expected two heights of the image [from, to], 0 (bottom) to 1 (top), from below to");
+    s.foot_fade[0] = static_cast<float>(foot[0]);
+    s.foot_fade[1] = static_cast<float>(foot[1]);
+  }
   s.has_hue = r.has("hue");
   s.hue = static_cast<float>(r.number("hue", s.hue, 0, 360));
   s.has_hue_top = r.has("hue_top");

@@ -8,9 +8,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include "core/error.h"
 #include "display/display.h"
 #include "elements/eigenflame/eigen_renderer.h"
 #include "elements/eigenflame/eigenflame.h"
+#include "embedded_scenes.h"
 #include "flame_drivers/graph_walker.h"
 #include "gl/gles.h"
 #include "gl/render_target.h"
@@ -388,6 +390,92 @@ TEST(EigenBuiltinModels, SceneNamesTheCandleOrTheFireModel) {
     EXPECT_GE(eigen, 1) << scene;
   }
 }
+
+// foot_fade hides the foot of the model's image (the built-in fire's own bed
+// and logs, where a hearth draws its own) and leaves the flame above it as it was.
+TEST(EigenLook, FootFadeHidesTheImagesFootAndLeavesTheFlameAboveIt) {
+  // The fire model's image, 0.1 high from y = 0, framed whole (as
+  // tests/realism/scenes/eigen_fire.toml): the frame spans y -0.0082..0.1082.
+  const auto scene = [](const std::string& extra) {
+    return test::black_room(0.0, 0.05, 0.16, 0.0, 0.05, 0.0, 40) +
+           "[[element]]\nkind = \"eigenflame\"\nmodel = \"builtin:fire\"\nposition = [0.0, 0.0, "
+           "0.0]\nheight = 0.1\ncrossfade = 0.0\nglow_strength = 0.0\n" +
+           extra;
+  };
+  constexpr int w = 96, h = 96;
+  test::RenderHarness plain(scene(""), w, h, 3);
+  test::RenderHarness faded(scene("foot_fade = [0.3, 0.5]\n"), w, h, 3);
+  plain.run(20);
+  faded.run(20);
+  const test::Frame a = plain.read(), b = faded.read();
+  // The screen row of a height in the image (0 its bottom, 1 its top).
+  const auto row = [&](double at) { return static_cast<int>((0.1082 - 0.1 * at) / 0.1164 * h); };
+  const auto mean = [&](const test::Frame& f, int y0, int y1) {
+    double sum = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) sum += f.luma(x, y);
+    return sum / ((y1 - y0) * w);
+  };
+  // Below 0.3 of its height (the bed and the front log: lit, unfaded) nothing.
+  const int foot0 = row(0.28), foot1 = row(0.02);
+  EXPECT_GT(mean(a, foot0, foot1), 15.0);
+  EXPECT_LT(mean(b, foot0, foot1), 0.5);
+  // Above 0.5 the same picture (within a gray level: the billboard's sampling).
+  double worst = 0;
+  for (int y = row(0.95); y < row(0.52); ++y)
+    for (int x = 0; x < w; ++x) worst = std::max(worst, std::abs(a.luma(x, y) - b.luma(x, y)));
+  EXPECT_GT(mean(a, row(0.95), row(0.52)), 15.0);
+  EXPECT_LE(worst, 1.0);
+  // Heights out of order or not two are an error naming the key.
+  for (const char* bad :
+       {"foot_fade = [0.5, 0.3]", "foot_fade = [0.4]", "foot_fade = [0.2, 1.5]"}) {
+    try {
+      load_scene_text(scene(std::string(bad) + "\n"), "<test>");
+      ADD_FAILURE() << bad << ": no error";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("foot_fade"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// The eigen fireplace is a fire that fills the picture (issue 35: at least 12%
+// of the pixels above 0.25 gray and 45% of the frame's height, at 1280x720 and
+// 1920x1080), its flames' feet faded where the hearth's logs are: without its
+// firebox (the lit bricks are not fire), over four frames a third of a second apart.
+class EigenFireplaceFill : public ::testing::TestWithParam<std::pair<int, int>> {};
+
+TEST_P(EigenFireplaceFill, FillsThePicture) {
+  const auto [w, h] = GetParam();
+  std::string toml(scenes::find("eigen-fireplace.toml"));
+  const auto box = toml.find("[element.firebox]");
+  ASSERT_NE(box, std::string::npos);
+  toml.erase(box, toml.find("\n\n", box) - box);
+  test::RenderHarness r(load_scene_text(toml, "eigen-fireplace.toml (no firebox)"), w, h);
+  double lit_share = 0;
+  constexpr int kFrames = 4;
+  for (int k = 0; k < kFrames; ++k) {
+    r.run(20);
+    const test::Frame f = r.read();
+    int count = 0, top = h, bottom = -1;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        if (f.luma(x, y) > 0.25 * 255) {
+          ++count;
+          top = std::min(top, y);
+          bottom = std::max(bottom, y);
+        }
+    lit_share += static_cast<double>(count) / (w * h);
+    EXPECT_GE(bottom - top + 1, 0.45 * h) << "frame " << k;
+  }
+  EXPECT_GE(lit_share / kFrames, 0.12);
+}
+
+INSTANTIATE_TEST_SUITE_P(EigenFire, EigenFireplaceFill,
+                         ::testing::Values(std::make_pair(1280, 720), std::make_pair(1920, 1080)),
+                         [](const auto& info) {
+                           return std::to_string(info.param.first) + "x" +
+                                  std::to_string(info.param.second);
+                         });
 
 TEST(EigenScenes, ShippedScenesLoad) {
   for (const char* name : {"eigen-fireplace", "eigen-candle", "eigen-bench-f1-e8",
