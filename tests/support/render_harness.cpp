@@ -7,6 +7,18 @@
 
 namespace candela::test {
 
+Frame::Lit Frame::lit_above(double gray) const {
+  Lit lit{0, height, -1};
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      if (luma(x, y) > gray) {
+        ++lit.count;
+        lit.top = std::min(lit.top, y);
+        lit.bottom = std::max(lit.bottom, y);
+      }
+  return lit;
+}
+
 void Frame::save_png(const std::string& path) const {
   write_png(path, width, height, 4, rgba.data());
 }

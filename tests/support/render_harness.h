@@ -31,6 +31,12 @@ struct Frame {
     return 0.299 * c.r + 0.587 * c.g + 0.114 * c.b;
   }
   void save_png(const std::string& path) const;
+  // The pixels whose luma is above `gray` (0..255): how many, and the first
+  // and last rows holding one (top = height, bottom = -1 when none).
+  struct Lit {
+    int count = 0, top = 0, bottom = -1;
+  };
+  Lit lit_above(double gray) const;
 };
 
 class RenderHarness {

@@ -482,7 +482,8 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
     const auto foot = r.numbers("foot_fade", 0, 1, 2);
     if (foot.size() != 2 || !(foot[0] < foot[1]))
       r.fail("foot_fade",
-             "expected two heights of the image [from, to], 0 (bottom) to 1 (top), from below to");
+             "expected [from, to]: two heights in the image, 0 (its bottom) to 1 (its top), from "
+             "lower than to");
     s.foot_fade[0] = static_cast<float>(foot[0]);
     s.foot_fade[1] = static_cast<float>(foot[1]);
   }

@@ -455,17 +455,9 @@ TEST_P(EigenFireplaceFill, FillsThePicture) {
   constexpr int kFrames = 4;
   for (int k = 0; k < kFrames; ++k) {
     r.run(20);
-    const test::Frame f = r.read();
-    int count = 0, top = h, bottom = -1;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        if (f.luma(x, y) > 0.25 * 255) {
-          ++count;
-          top = std::min(top, y);
-          bottom = std::max(bottom, y);
-        }
-    lit_share += static_cast<double>(count) / (w * h);
-    EXPECT_GE(bottom - top + 1, 0.45 * h) << "frame " << k;
+    const test::Frame::Lit lit = r.read().lit_above(0.25 * 255);
+    lit_share += static_cast<double>(lit.count) / (w * h);
+    EXPECT_GE(lit.bottom - lit.top + 1, 0.45 * h) << "frame " << k;
   }
   EXPECT_GE(lit_share / kFrames, 0.12);
 }

@@ -540,14 +540,7 @@ TEST_P(FireplaceFill, FillsThePictureAsOneFire) {
   for (int k = 0; k < kFrames; ++k) {
     h.run(10);
     const test::Frame f = h.read();
-    int count = 0, top = kFh, bottom = -1;
-    for (int y = 0; y < kFh; ++y)
-      for (int x = 0; x < kFw; ++x)
-        if (lit(f, x, y)) {
-          ++count;
-          top = std::min(top, y);
-          bottom = std::max(bottom, y);
-        }
+    const auto [count, top, bottom] = f.lit_above(0.25 * 255);
     lit_share += static_cast<double>(count) / (kFw * kFh);
     const int span = bottom - top + 1;
     EXPECT_GE(span, 0.45 * kFh) << "frame " << k;
