@@ -19,4 +19,14 @@ inline std::string black_room(double x, double y, double z, double tx, double ty
   return text;
 }
 
+// A built-in scene's text without one of its tables (e.g. a fireplace
+// without "[element.firebox]": measuring the fire, not the lit bricks), up
+// to the blank line that ends it. Empty when the scene has no such table.
+inline std::string without_table(std::string toml, const std::string& header) {
+  const auto at = toml.find(header);
+  if (at == std::string::npos) return {};
+  toml.erase(at, toml.find("\n\n", at) - at);
+  return toml;
+}
+
 }  // namespace candela::test

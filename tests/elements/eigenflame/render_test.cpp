@@ -446,10 +446,9 @@ class EigenFireplaceFill : public ::testing::TestWithParam<std::pair<int, int>> 
 
 TEST_P(EigenFireplaceFill, FillsThePicture) {
   const auto [w, h] = GetParam();
-  std::string toml(scenes::find("eigen-fireplace.toml"));
-  const auto box = toml.find("[element.firebox]");
-  ASSERT_NE(box, std::string::npos);
-  toml.erase(box, toml.find("\n\n", box) - box);
+  const std::string toml =
+      test::without_table(std::string(scenes::find("eigen-fireplace.toml")), "[element.firebox]");
+  ASSERT_FALSE(toml.empty());
   test::RenderHarness r(load_scene_text(toml, "eigen-fireplace.toml (no firebox)"), w, h);
   double lit_share = 0;
   constexpr int kFrames = 4;
