@@ -24,14 +24,15 @@ void main() {
   vec3 n = normalize(v_normal);
   vec3 to_light = u_light_pos - v_world;
   float d2 = dot(to_light, to_light);
-  float facing = max(dot(n, normalize(to_light)), 0.0);
+  float toward = dot(n, normalize(to_light));  // 1 facing the fire, -1 turned away
+  float facing = max(toward, 0.0);
   // What faces the fire, and the tops the flames lick, flicker bright. The
   // fire is no point: it is as wide as the bed and its flames rise in front
   // of the logs too, so light wraps round a log (a front log's face is dim,
   // not black). The firebox and the other logs glow back a paler light, as a
   // camera sees it: real logs by a fire read brown (R:G:B about 1.7:1:0.6),
   // not the fire's own orange.
-  float wrap = max(dot(n, normalize(to_light)) + 0.7, 0.0) / 1.7;
+  float wrap = max(toward + 0.7, 0.0) / 1.7;
   // Both fall off towards the bed's ends, away from the flames.
   float near = 1.0 / (1.0 + d2 * 5.0);
   vec3 lit = u_light.rgb * (0.1 + 3.0 * facing * facing + 0.7 * wrap * wrap + 0.8 * max(n.y, 0.0)) * near;
@@ -60,7 +61,7 @@ void main() {
   // front log is dark, and a bright rim (4x this) joined the logs and the
   // flames into one solid lit mass (c2st.py: the eigen fireplace's d' 5.9
   // went to 6.5, beyond the real fires).
-  float rim = pow(1.0 - turned, 3.0) * smoothstep(-0.1, 0.7, dot(n, normalize(to_light)));
+  float rim = pow(1.0 - turned, 3.0) * smoothstep(-0.1, 0.7, toward);
   vec3 sheen = u_light.rgb * vec3(1.0, 0.72, 0.48) * rim * near;
   o_color = vec4(colour * (lit + vec3(0.03)) + ember + hot * (0.3 + colour) + sheen, 1.0);
 }
