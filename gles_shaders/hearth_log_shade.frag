@@ -35,15 +35,15 @@ void main() {
   float wrap = max(toward + 0.7, 0.0) / 1.7;
   // Both fall off towards the bed's ends, away from the flames.
   float near = 1.0 / (1.0 + d2 * 5.0);
-  vec3 lit = u_light.rgb * (0.1 + 3.0 * facing * facing + 0.7 * wrap * wrap + 0.8 * max(n.y, 0.0)) * near;
+  vec3 lit = u_light.rgb * (0.05 + 3.0 * facing * facing + 0.3 * wrap * wrap + 0.8 * max(n.y, 0.0)) * near;
   // The paler fill comes from above (the lit firebox and the flames over the
   // bed), so a log's face darkens from its top down to its underside, and
   // towards its outline, where the surface turns away from the camera: the
   // shading that makes it read round, not a flat plank.
   float from_above = smoothstep(-0.7, 0.8, n.y);
   float turned = max(dot(n, normalize(u_camera - v_world)), 0.0);
-  lit += dot(u_light.rgb, vec3(0.4, 0.4, 0.2)) * vec3(1.0, 0.84, 0.74) *
-         (0.06 + 0.64 * from_above) * (0.35 + 0.65 * turned) * near;
+  lit += dot(u_light.rgb, vec3(0.4, 0.4, 0.2)) * vec3(1.0, 0.92, 0.86) *
+         (0.035 + 0.4 * from_above) * (0.35 + 0.65 * turned) * near;
   // The coals under the logs light their undersides and lower flanks.
   lit += u_light.rgb * vec3(1.0, 0.6, 0.35) * (0.55 * u_light.w * max(-n.y + 0.3, 0.0));
   // Where a log lies on the coals its char is red hot: a soft glow that

@@ -138,6 +138,9 @@ TEST(HearthRender, AFrontLogIsShadedRoundLightAlongItsTopDarkUnderneath) {
   for (int y = top + span / 2; y <= bottom; ++y) lower += rows[y] / (bottom + 1 - top - span / 2);
   EXPECT_GT(upper, 2.9 * lower) << "the top fifth against the lower half";
   EXPECT_GT(lower, 2.0) << "the underside dim, not black";
+  // Lit from behind, its face is dark, as front logs in footage are: a
+  // brown face as bright as the flames' fill light read as a lit plank (5.7).
+  EXPECT_LT(lower, 5.0) << "the lower half, of 255";
 }
 
 TEST(HearthRender, AFrontLogHidesTheFeetOfAFire) {
