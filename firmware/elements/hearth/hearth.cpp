@@ -153,7 +153,8 @@ class Hearth final : public Element {
     logs_cache_prog_ =
         Program::from_library("hearth_log.vert", {"value_noise.frag", "hearth_log.frag"});
     logs_prog_ = Program::from_library("hearth_log.vert", "hearth_log_shade.frag");
-    bed_cache_prog_ = Program::from_library("floor_quad.vert", "hearth_bed.frag");
+    bed_cache_prog_ =
+        Program::from_library("floor_quad.vert", {"value_noise.frag", "hearth_bed.frag"});
     bed_prog_ = Program::from_library("floor_quad.vert", "hearth_bed_shade.frag");
     if (s_.firebox.width > 0) make_firebox();
     const auto u = [&](const Program& p, const char* n) { return p.uniform(n); };
