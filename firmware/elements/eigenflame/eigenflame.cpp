@@ -300,7 +300,7 @@ class EigenFlame final : public Element {
 
   void draw(const FrameContext& f, DrawPass pass) override {
     if (pass == DrawPass::kBody && embers_.id()) draw_embers(f);
-    if (pass != DrawPass::kFlame) return;
+    if (pass != (s_.in_front ? DrawPass::kOverlay : DrawPass::kFlame)) return;
     FlamePose pose;
     pose_now(pose);
     renderer_->composite(f.view, f.view_projection, pose);
@@ -487,6 +487,7 @@ std::unique_ptr<EigenFlameSpec> parse_eigenflame(ParamReader& r) {
     s.foot_fade[0] = static_cast<float>(foot[0]);
     s.foot_fade[1] = static_cast<float>(foot[1]);
   }
+  s.in_front = r.boolean("in_front", s.in_front);
   s.has_hue = r.has("hue");
   s.hue = static_cast<float>(r.number("hue", s.hue, 0, 360));
   s.has_hue_top = r.has("hue_top");

@@ -44,6 +44,9 @@
 //   foot_fade = [0.25, 0.45]   # fade the image's foot in between these heights (0 bottom,
 //                              # 1 top): hides a model's own bed and logs where a scene
 //                              # has its own (default none)
+//   in_front = true            # drawn after the other elements' front parts (a hearth's
+//                              # front logs; the overlay pass): flames licking up in front
+//                              # of them, as in footage (default false: behind them)
 //   [element.graph]  max_stretch = 45  window = 1800  jump_chance = 0.08  steer_chance = 0.17
 //   [element.wind]   lean = 0.05  max_lean = 0.2  response = 2.0  bend = 0.15
 //   [element.embers] width = 0.6  depth = 0.25  colour = "#ff5010"  # a glowing bed under it
@@ -115,6 +118,7 @@ struct EigenFlameSettings {
   float glow_radius = 0.12f, glow_strength = 0.6f;
   float edge_fade = 0.05f;
   float foot_fade[2] = {0, 0};  // image heights: hidden below the first, whole above the second
+  bool in_front = false;        // drawn in the overlay pass, over a hearth's front logs
   EigenWeightEdits weights;  // weight_offsets, detail_scale (graph and story drivers)
   WalkSettings walk;
   Fixed wind_lean = Fixed::from_ratio(5, 100);   // target lean per m/s, image widths

@@ -438,6 +438,46 @@ TEST(EigenLook, FootFadeHidesTheImagesFootAndLeavesTheFlameAboveIt) {
   }
 }
 
+TEST(EigenLook, InFrontDrawsTheFlameOverAHearthsFrontLog) {
+  // A hearth's front log (drawn after the flames) across the foot of a fire
+  // model's flame: behind it, the flame's foot is hidden; in_front = true
+  // draws the flame after the log, licking up over it, as in footage.
+  const auto scene = [](const std::string& extra) {
+    return test::black_room(0.0, 0.05, 0.3, 0.0, 0.05, 0.0, 40) +
+           "[[element]]\nkind = \"hearth\"\nwidth = 0.3\ndepth = 0.2\nembers = 0\n"
+           "light_strength = 0.3\n[[element.log]]\nfrom = [-0.15, 0.03, 0.08]\n"
+           "to = [0.15, 0.03, 0.08]\nradius = 0.03\n\n" +
+           extra;
+  };
+  const std::string flame =
+      "[[element]]\nkind = \"eigenflame\"\nmodel = \"builtin:fire\"\nposition = [0.0, 0.0, "
+      "0.0]\nheight = 0.1\ncrossfade = 0.0\nglow_strength = 0.0\n";
+  constexpr int w = 96, h = 96;
+  test::RenderHarness logs(scene(""), w, h, 3);
+  test::RenderHarness behind(scene(flame), w, h, 3);
+  test::RenderHarness in_front(scene(flame + "in_front = true\n"), w, h, 3);
+  logs.run(20);
+  behind.run(20);
+  in_front.run(20);
+  // The log's middle band (y 0.015..0.045 seen from 0.22 m), the middle columns.
+  const auto mean = [&](const test::Frame& f) {
+    double sum = 0;
+    int n = 0;
+    for (int y = h * 56 / 100; y < h * 68 / 100; ++y)
+      for (int x = w * 3 / 10; x < w * 7 / 10; ++x) sum += f.luma(x, y), ++n;
+    return sum / n;
+  };
+  const double log = mean(logs.read()), hidden = mean(behind.read()), over = mean(in_front.read());
+  EXPECT_LT(std::abs(hidden - log), 1.0) << "behind the log: the log alone shows";
+  EXPECT_GT(over, log + 20.0) << "in front: the flame's foot over the log";
+  try {
+    load_scene_text(scene(flame + "in_front = \"yes\"\n"), "<test>");
+    ADD_FAILURE() << "in_front = \"yes\": no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("in_front"), std::string::npos) << e.what();
+  }
+}
+
 // The eigen fireplace is a fire that fills the picture (issue 35: at least 12%
 // of the pixels above 0.25 gray and 45% of the frame's height, at 1280x720 and
 // 1920x1080), its flames' feet faded where the hearth's logs are: without its
