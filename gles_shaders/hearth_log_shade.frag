@@ -54,14 +54,15 @@ void main() {
   float crack = k.x + k.y * (1.0 / 255.0);
   float pulse = 0.6 + 0.4 * sin(u_time * (1.3 + k.z * 2.0) + k.w * 6.28);
   float glow = crack * pulse * u_light.w;
-  vec3 ember = vec3(1.0, 0.32, 0.05) * glow * 1.6 + vec3(1.0, 0.7, 0.3) * pow(glow, 3.0) * 0.6;
+  vec3 ember = vec3(1.0, 0.32, 0.05) * glow * 1.6 + vec3(1.0, 0.7, 0.3) * (glow * glow * glow) * 0.6;
   // Backlit by the flames, a log's outline on the fire's side catches a
   // little of their light along its top edge (char and ash have a dull
   // sheen, so it does not take the surface's colour). Faint: in footage a
   // front log is dark, and a bright rim (4x this) joined the logs and the
   // flames into one solid lit mass (c2st.py: the eigen fireplace's d' 5.9
   // went to 6.5, beyond the real fires).
-  float rim = pow(1.0 - turned, 3.0) * smoothstep(-0.1, 0.7, toward);
+  float away = 1.0 - turned;
+  float rim = away * away * away * smoothstep(-0.1, 0.7, toward);
   vec3 sheen = u_light.rgb * vec3(1.0, 0.72, 0.48) * rim * near;
   o_color = vec4(colour * (lit + vec3(0.03)) + ember + hot * (0.3 + colour) + sheen, 1.0);
 }
