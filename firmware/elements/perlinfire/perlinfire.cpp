@@ -261,11 +261,11 @@ class PerlinFire final : public Element {
     glEnable(GL_SCISSOR_TEST);
     const float sx = static_cast<float>(sub_w_) / f.width,
                 sy = static_cast<float>(sub_h_) / f.height;
-    const int x0 = std::max(0, static_cast<int>(std::floor(rect_[0] * sx)) - 1);
-    const int y0 = std::max(0, static_cast<int>(std::floor(rect_[1] * sy)) - 1);
-    // One texel past the part in use is cleared too: filtering reads it.
-    const int x1 = std::min(target_.width(), static_cast<int>(std::ceil(rect_[2] * sx)) + 2);
-    const int y1 = std::min(target_.height(), static_cast<int>(std::ceil(rect_[3] * sy)) + 2);
+    const int x0 = std::max(0, static_cast<int>(std::floor(rect_[0] * sx)) - 2);
+    const int y0 = std::max(0, static_cast<int>(std::floor(rect_[1] * sy)) - 2);
+    // Two texels past the part in use are cleared too: the B-spline reads them.
+    const int x1 = std::min(target_.width(), static_cast<int>(std::ceil(rect_[2] * sx)) + 3);
+    const int y1 = std::min(target_.height(), static_cast<int>(std::ceil(rect_[3] * sy)) + 3);
     glClearColor(0, 0, 0, 0);
     // The halo reads the target blurred (its mipmaps), whose coarse texels
     // reach past the part in use: the whole target is cleared, as what an
@@ -320,6 +320,7 @@ class PerlinFire final : public Element {
       glUniform3f(u_.composite_color, s_.color.x, s_.color.y, s_.color.z);
       // The halo's blur: its share of the picture's height, whatever the scale.
       glUniform1f(u_.halo, halo_ ? s_.halo : 0.0f);
+      glUniform1i(u_.bspline, quality_.scale <= 0.5f ? 1 : 0);
       glUniform1f(u_.halo_lod,
                   std::log2(std::max(1.0f, s_.halo_radius * static_cast<float>(sub_h_))));
       bind_texture(4, target_.texture(), u_.image);
@@ -489,6 +490,7 @@ class PerlinFire final : public Element {
     u_.uv_per_pixel = composite_.uniform("u_uv_per_pixel");
     u_.halo = composite_.uniform("u_halo");
     u_.halo_lod = composite_.uniform("u_halo_lod");
+    u_.bspline = composite_.uniform("u_bspline");
     u_.depth = composite_.uniform("u_depth");
   }
 
@@ -627,7 +629,8 @@ class PerlinFire final : public Element {
         octaves, weights, offset, flow_cs, time4, lean, displacement, turbulence_mean, intensity,
         obstacle, obstacle_relief, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble,
         ramp_here, slices, tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, cooling,
-        trail_lift, swell, swell_scale, image, uv_per_pixel, composite_color, halo, halo_lod, depth;
+        trail_lift, swell, swell_scale, image, uv_per_pixel, composite_color, halo, halo_lod,
+        bspline, depth;
   };
 
   FireSettings s_;
