@@ -2,9 +2,9 @@
 // A bed of embers' static layout, rendered once into the hearth's cache
 // (see hearth.cpp): broken coals of many sizes (cells of a jittered grid,
 // the grid itself warped so no two are alike) between dark gaps of uneven
-// width; some coals burnt out black, others mottled, glowing from their own
-// hot heart and brightest in the fine cracks that split them, under patches
-// of ash; brighter towards the bed's middle. A coal's even glow between thin
+// width; some coals burnt out black, the rest glowing in blotches and specks,
+// most at their own hot heart, under patches of ash; brighter towards the
+// bed's middle. A coal's even glow between thin
 // seams of one width read as a tiled floor. Out: that glow (16 bits over two
 // channels) and the coal's two hashes, which set its pulse;
 // hearth_bed_shade.frag pulses and colours it every frame, so the cell
