@@ -19,6 +19,17 @@ Frame::Lit Frame::lit_above(double gray) const {
   return lit;
 }
 
+double Frame::mean_luma(int x0, int y0, int x1, int y1) const {
+  double sum = 0;
+  int n = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      sum += luma(x, y);
+      ++n;
+    }
+  return sum / n;
+}
+
 void Frame::save_png(const std::string& path) const {
   write_png(path, width, height, 4, rgba.data());
 }

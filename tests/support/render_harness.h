@@ -37,6 +37,8 @@ struct Frame {
     int count = 0, top = 0, bottom = -1;
   };
   Lit lit_above(double gray) const;
+  // The mean luma of the columns x0..x1-1 of the rows y0..y1-1 (top row 0).
+  double mean_luma(int x0, int y0, int x1, int y1) const;
 };
 
 class RenderHarness {

@@ -410,12 +410,7 @@ TEST(EigenLook, FootFadeHidesTheImagesFootAndLeavesTheFlameAboveIt) {
   const test::Frame a = plain.read(), b = faded.read();
   // The screen row of a height in the image (0 its bottom, 1 its top).
   const auto row = [&](double at) { return static_cast<int>((0.1082 - 0.1 * at) / 0.1164 * h); };
-  const auto mean = [&](const test::Frame& f, int y0, int y1) {
-    double sum = 0;
-    for (int y = y0; y < y1; ++y)
-      for (int x = 0; x < w; ++x) sum += f.luma(x, y);
-    return sum / ((y1 - y0) * w);
-  };
+  const auto mean = [&](const test::Frame& f, int y0, int y1) { return f.mean_luma(0, y0, w, y1); };
   // Below 0.3 of its height (the bed and the front log: lit, unfaded) nothing.
   const int foot0 = row(0.28), foot1 = row(0.02);
   EXPECT_GT(mean(a, foot0, foot1), 15.0);
@@ -461,11 +456,7 @@ TEST(EigenLook, InFrontDrawsTheFlameOverAHearthsFrontLog) {
   in_front.run(20);
   // The log's middle band (y 0.015..0.045 seen from 0.22 m), the middle columns.
   const auto mean = [&](const test::Frame& f) {
-    double sum = 0;
-    int n = 0;
-    for (int y = h * 56 / 100; y < h * 68 / 100; ++y)
-      for (int x = w * 3 / 10; x < w * 7 / 10; ++x) sum += f.luma(x, y), ++n;
-    return sum / n;
+    return f.mean_luma(w * 3 / 10, h * 56 / 100, w * 7 / 10, h * 68 / 100);
   };
   const double log = mean(logs.read()), hidden = mean(behind.read()), over = mean(in_front.read());
   EXPECT_LT(std::abs(hidden - log), 1.0) << "behind the log: the log alone shows";

@@ -46,14 +46,8 @@ Vec2 project(Vec3 p) {
 }
 
 double mean_luma(const test::Frame& f, Vec2 at, int radius) {
-  double sum = 0;
-  int n = 0;
-  for (int y = static_cast<int>(at.y) - radius; y <= static_cast<int>(at.y) + radius; ++y)
-    for (int x = static_cast<int>(at.x) - radius; x <= static_cast<int>(at.x) + radius; ++x) {
-      sum += f.luma(x, y);
-      ++n;
-    }
-  return sum / n;
+  const int x = static_cast<int>(at.x), y = static_cast<int>(at.y);
+  return f.mean_luma(x - radius, y - radius, x + radius + 1, y + radius + 1);
 }
 
 // Renders `frames` frames of a scene and returns the last. One harness at a
