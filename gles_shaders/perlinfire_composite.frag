@@ -15,6 +15,7 @@ uniform float u_halo;         // sheets: the halo's strength (0: none)
 uniform float u_halo_lod;     // sheets: the mipmap level whose texels are the halo's blur
 uniform float u_depth;        // the fire's middle plane's depth (its `occlude` key: what is nearer hides it)
 uniform int u_bspline;        // sheets: 1 scales up by a cubic B-spline (at half the screen's size or less)
+uniform vec2 u_texels;        // u_image's size in texels (a uniform: not asked of the texture per pixel)
 out vec4 o_color;
 
 #if PF_SHADING == 1
@@ -25,7 +26,7 @@ out vec4 o_color;
 // staircase of the coarse texels. It softens a little too: closer to the
 // screen's size (the default 0.7) the outline stays linear, and finer.
 vec4 bspline(vec2 uv) {
-  vec2 size = vec2(textureSize(u_image, 0));
+  vec2 size = u_texels;
   vec2 p = uv * size - 0.5;
   vec2 i = floor(p), f = p - i;
   vec2 f2 = f * f, f3 = f2 * f;

@@ -321,6 +321,8 @@ class PerlinFire final : public Element {
       // The halo's blur: its share of the picture's height, whatever the scale.
       glUniform1f(u_.halo, halo_ ? s_.halo : 0.0f);
       glUniform1i(u_.bspline, quality_.scale <= 0.5f ? 1 : 0);
+      glUniform2f(u_.texels, static_cast<float>(target_.width()),
+                  static_cast<float>(target_.height()));
       glUniform1f(u_.halo_lod,
                   std::log2(std::max(1.0f, s_.halo_radius * static_cast<float>(sub_h_))));
       bind_texture(4, target_.texture(), u_.image);
@@ -491,6 +493,7 @@ class PerlinFire final : public Element {
     u_.halo = composite_.uniform("u_halo");
     u_.halo_lod = composite_.uniform("u_halo_lod");
     u_.bspline = composite_.uniform("u_bspline");
+    u_.texels = composite_.uniform("u_texels");
     u_.depth = composite_.uniform("u_depth");
   }
 
@@ -630,7 +633,7 @@ class PerlinFire final : public Element {
         obstacle, obstacle_relief, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble,
         ramp_here, slices, tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, cooling,
         trail_lift, swell, swell_scale, image, uv_per_pixel, composite_color, halo, halo_lod,
-        bspline, depth;
+        bspline, texels, depth;
   };
 
   FireSettings s_;
