@@ -108,6 +108,9 @@ int run_simulate(int argc, char** argv) {
   bool fuel_bed = false;
   app.add_flag("--fuel-bed", fuel_bed,
                "logs and glowing coals around the flames (on the canvas of --slices)");
+  bool no_back_logs = false;
+  app.add_flag("--no-back-logs", no_back_logs,
+               "fuel bed without its two logs behind the flames, only the front log and coals");
   app.add_option("--slice-spacing", slice_spacing, "distance between slice centres, slice widths")
       ->capture_default_str();
   double slice_flicker = 0.0;
@@ -197,6 +200,7 @@ int run_simulate(int argc, char** argv) {
     opt.slice_edge_fade = slice_edge_fade;
     opt.shutter = shutter;
     opt.fuel_bed = fuel_bed;
+    opt.back_logs = !no_back_logs;
     opt.t_reference = t_reference;
     opt.write_fields = !no_fields;
     opt.out_dir = out;

@@ -61,8 +61,8 @@ OnLog on_log(const Log& l, double x, double y) {
 
 // A log's surface: bark lit from above by the flames (`light`), and the
 // glowing net of cracks where it has charred.
-double wood(const FuelBed& bed, const OnLog& o, size_t index, double light, double time) {
-  const uint64_t seed = mix64(bed.seed * 0x9e37ull + index);
+double wood(const FuelBed& bed, const OnLog& o, uint64_t grain, double light, double time) {
+  const uint64_t seed = mix64(bed.seed * 0x9e37ull + grain);
   // A cylinder seen side-on: the top faces the flames, the bottom is in shadow.
   const double diffuse = std::pow(std::clamp(0.15 + 0.85 * o.up, 0.0, 1.0), 2.0);
   const double streaks = 0.55 + 0.9 * value_noise(seed, o.along / 16.0, o.up * 3.0, 0.0);
@@ -79,16 +79,17 @@ double wood(const FuelBed& bed, const OnLog& o, size_t index, double light, doub
 
 }  // namespace
 
-FuelBed hearth_fuel_bed(int width, int height, uint64_t seed) {
+FuelBed hearth_fuel_bed(int width, int height, uint64_t seed, bool back_logs) {
   FuelBed b;
   b.seed = seed;
   const double w = width, h = height;
   b.logs = {
       // Two logs behind the flames, then the long one across the front.
-      Log{0.08 * w, 0.80 * h, 0.56 * w, 0.75 * h, 0.045 * h, false},
-      Log{0.44 * w, 0.74 * h, 0.93 * w, 0.79 * h, 0.045 * h, false},
-      Log{0.02 * w, 0.865 * h, 0.98 * w, 0.895 * h, 0.062 * h, true},
+      Log{0.08 * w, 0.80 * h, 0.56 * w, 0.75 * h, 0.045 * h, false, 0},
+      Log{0.44 * w, 0.74 * h, 0.93 * w, 0.79 * h, 0.045 * h, false, 1},
+      Log{0.02 * w, 0.865 * h, 0.98 * w, 0.895 * h, 0.062 * h, true, 2},
   };
+  if (!back_logs) b.logs.erase(b.logs.begin(), b.logs.begin() + 2);
   b.coal_top = 0.9 * h;
   b.coal_size = std::max(3.0, 0.04 * h);
   return b;
@@ -131,13 +132,14 @@ void draw_fuel_bed(const FuelBed& bed, double time, int width, int height,
       for (size_t i = 0; i < bed.logs.size(); ++i) {
         if (bed.logs[i].in_front) continue;
         const OnLog o = on_log(bed.logs[i], px, py);
-        if (o.cover > 0.0) base += (wood(bed, o, i, light[x], time) - base) * o.cover;
+        if (o.cover > 0.0)
+          base += (wood(bed, o, bed.logs[i].grain, light[x], time) - base) * o.cover;
       }
       double out = base + flame;
       for (size_t i = 0; i < bed.logs.size(); ++i) {
         if (!bed.logs[i].in_front) continue;
         const OnLog o = on_log(bed.logs[i], px, py);
-        if (o.cover > 0.0) out += (wood(bed, o, i, light[x], time) - out) * o.cover;
+        if (o.cover > 0.0) out += (wood(bed, o, bed.logs[i].grain, light[x], time) - out) * o.cover;
       }
       v = static_cast<float>(out);
     }

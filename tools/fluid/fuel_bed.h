@@ -16,6 +16,7 @@ struct Log {
   double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
   double radius = 10.0;
   bool in_front = true;  // in front of the flames (hides them) or behind (they add over it)
+  uint64_t grain = 0;    // seeds its bark and cracks (with the bed's seed)
 };
 
 struct FuelBed {
@@ -29,8 +30,12 @@ struct FuelBed {
 };
 
 // A fuel bed for a canvas of the given size: a long front log across the
-// bottom, two shorter ones behind it, coals under them; seeded.
-FuelBed hearth_fuel_bed(int width, int height, uint64_t seed);
+// bottom, two shorter ones behind it (unless `back_logs` is false), coals
+// under them; seeded. Without the back logs the flames reach down to the
+// front log: a scene that fades a model image's foot out above that log
+// (the eigen fireplace) would otherwise show the back logs' lit tops through
+// its flames as one straight band.
+FuelBed hearth_fuel_bed(int width, int height, uint64_t seed, bool back_logs = true);
 
 // Composites the bed with the flames' light already in `canvas`: logs behind
 // the flames first (the flames' light adds over them), then the front logs

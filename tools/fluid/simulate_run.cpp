@@ -201,6 +201,8 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
     throw std::invalid_argument("shutter: a share of the frame in (0, 1]");
   if (opt.fuel_bed && opt.slices < 2)
     throw std::invalid_argument("fuel-bed: drawn on the canvas of --slices 2 or more");
+  if (!opt.back_logs && !opt.fuel_bed)
+    throw std::invalid_argument("no-back-logs: a choice about the fuel bed; add --fuel-bed");
   if (opt.slices > 1 && opt.write_fields)
     throw std::invalid_argument("slices: fields are per simulation; use --no-fields");
   if (opt.out_dir.empty()) throw std::invalid_argument("out: a folder to write the clip to");
@@ -287,7 +289,7 @@ SimulateSummary run_simulation(const SimulateOptions& opt, const Progress& progr
     }
   }
   std::vector<float> canvas;
-  const FuelBed bed = hearth_fuel_bed(canvas_w, canvas_h, params.seed);
+  const FuelBed bed = hearth_fuel_bed(canvas_w, canvas_h, params.seed, opt.back_logs);
   const RadianceTable table(params.t_ambient, t_ref);
 
   FieldFrame field;

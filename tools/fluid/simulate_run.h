@@ -53,6 +53,7 @@ struct SimulateOptions {
   double shutter = 1.0;
   // Logs and coals around the flames (fuel_bed.h), drawn on the slices' canvas.
   bool fuel_bed = false;
+  bool back_logs = true;  // the bed's two logs behind the flames (fuel_bed.h)
   bool write_fields = true;
   double t_reference = 0.0;  // 0 = the hottest cell after the warm-up
   std::string out_dir;

@@ -547,6 +547,40 @@ TEST(FuelBed, FrontLogHidesFlamesLogsBehindShowThrough) {
   EXPECT_GT(change / dark.size(), 1e-4) << "the glow pulses";
 }
 
+// Without its back logs the bed keeps the front log and coals as they were,
+// and the flames above the front log are the simulation's own light: no lit
+// log top through them (the eigen fireplace showed one as a straight band).
+TEST(FuelBed, WithoutBackLogsFlamesAboveTheFrontLogAreTheirOwnLight) {
+  const int w = 160, h = 120;
+  const FuelBed full = hearth_fuel_bed(w, h, 7), front_only = hearth_fuel_bed(w, h, 7, false);
+  ASSERT_EQ(front_only.logs.size(), 1u);
+  ASSERT_TRUE(front_only.logs[0].in_front);
+  std::vector<float> flames(static_cast<size_t>(w) * h, 0.0f);
+  for (int y = h / 2; y < h; ++y)
+    for (int x = 0; x < w; ++x) flames[static_cast<size_t>(y) * w + x] = 0.6f;
+  std::vector<float> with = flames, without = flames;
+  draw_fuel_bed(full, 1.0, w, h, with);
+  draw_fuel_bed(front_only, 1.0, w, h, without);
+  auto at = [&](const std::vector<float>& c, double x, double y) {
+    return c[static_cast<size_t>(y) * w + static_cast<size_t>(x)];
+  };
+  // Along the back logs' lit tops: wood under the flames with them, none without.
+  for (int i = 0; i < 2; ++i) {
+    const Log& back = full.logs[static_cast<size_t>(i)];
+    const double bx = 0.5 * (back.x0 + back.x1), by = 0.5 * (back.y0 + back.y1) - 0.7 * back.radius;
+    EXPECT_GT(at(with, bx, by), 0.6f + 0.005f) << "back log " << i;
+    EXPECT_EQ(at(without, bx, by), 0.6f) << "back log " << i;
+  }
+  // The front log (along its axis) and the coals below it are the same either way.
+  const Log& front = full.logs[2];
+  for (double t = 0.05; t < 1.0; t += 0.1) {
+    const double x = front.x0 + t * (front.x1 - front.x0), y = front.y0 + t * (front.y1 - front.y0);
+    EXPECT_EQ(at(with, x, y), at(without, x, y)) << "front log at " << t;
+  }
+  for (int y = static_cast<int>(std::max(front.y0, front.y1) + front.radius) + 1; y < h; ++y)
+    for (int x = 0; x < w; x += 7) ASSERT_EQ(at(with, x, y), at(without, x, y)) << x << "," << y;
+}
+
 TEST(FluidSolver, RejectsBadParametersByName) {
   FluidParams p;
   p.width = 4;
