@@ -55,6 +55,9 @@ uniform float u_cooling;     // flame shading: share of the heat lost from the b
 uniform float u_trail_lift;  // a shutter's trail: what its fade takes off (1/255) over this frame's share
 uniform float u_swell;       // flame shading: how far the flames' height swells and sinks across the fire
 uniform float u_swell_scale[PF_SWELL_POINTS];  // the lookup's height scale at points across the fire (perlinfire.cpp)
+uniform vec3 u_fine_scale;   // flame shading: the fine tongue field's lattice, its offset, its gaps' depth
+uniform vec3 u_fine_offset;
+uniform vec2 u_fine_gap;
 uniform vec3 u_tongue_gap;    // x: how deep gaps between tongues cut (0: none); y: their width;
                               // z: the height above the base where they reach full depth
 
@@ -207,6 +210,11 @@ void main() {
         // Gaps widen upwards, so tongues taper to their tips.
         float w = u_tongue_gap.y * mix(0.6, 1.4, clamp(p.y, 0.0, 1.0));
         density *= 1.0 - depth * (1.0 - smoothstep(0.4 * w, w, n));
+        if (u_fine_gap.x > 0.0) {
+          float m = abs(pf_snoise3(vec3(q.x, q.y, 0.0) * u_fine_scale - u_fine_offset));
+          float wf = u_fine_gap.y * mix(0.6, 1.4, clamp(p.y, 0.0, 1.0));
+          density *= 1.0 - u_fine_gap.x * depth * (1.0 - smoothstep(0.4 * wf, wf, m));
+        }
       }
       float sheet = clamp((density - u_sheet.x) / u_sheet.y, 0.0, 1.0);
       // Heat: the profile's straight colour (its luminance), hotter at the base.

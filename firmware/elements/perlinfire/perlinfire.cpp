@@ -29,6 +29,8 @@ constexpr int kMaxOctaves = 8;
 // (perlinfire.frag), so about three rises and falls fit across it.
 constexpr int kSwellPoints = 8;
 constexpr double kTwoPi = 6.283185307179586;
+// The tongue field's sway: new places a second.
+constexpr double kSwayRate = 0.4;
 
 // Where the noise's offsets wrap: the 3-D noise repeats every 768 lattice
 // units, so its offsets wrap without a seam; the 4-D noise has no period, so
@@ -75,6 +77,10 @@ struct FireSettings {
   float tongue_base = 0.45f;  // the height (of the volume) where the gaps reach full depth
   Fixed tongue_rise = Fixed::from_int(1);    // how fast the tongue field rises, of the turbulence's
   Fixed tongue_evolve = Fixed::from_int(1);  // how fast it changes in place, of that rise
+  double fine_tongues = 15;  // a second, finer tongue field's cells per fire height across
+  float fine_gap = 0.0f;     // how deep its gaps cut (0: none); it rises with the turbulence
+  float fine_width = 0.55f;  // how wide its gaps are (of its |noise|)
+  double tongue_sway = 0;    // how far the tongue field wanders sideways (its cells), slowly
   Vec3 color{1, 1, 1};
   bool additive = true;
   float obstacle = 0;         // fraction of the volume's height that is solid (logs, grate)
@@ -149,7 +155,8 @@ class PerlinFire final : public Element {
                       std::min(1, s.quality.octaves), std::min(s.min_scale, s.quality.scale)),
                   governor_settings(s)),
         breath_(seed ^ 0x62726561746865ULL),
-        swell_heights_(seed ^ 0x7377656c6cULL) {
+        swell_heights_(seed ^ 0x7377656c6cULL),
+        sway_(seed ^ 0x73776179ULL) {
     program_ = Program::from_library("perlinfire.vert",
                                      {"perlinfire_noise.frag", "fire_ramp.frag", "perlinfire.frag"},
                                      perlinfire_defines(s.noise, s.shading));
@@ -410,6 +417,11 @@ class PerlinFire final : public Element {
     glUniform3f(u_.tongue_scale, ws.x * tq, ws.y * tq / static_cast<float>(s_.tongue_stretch),
                 0.0f);
     glUniform3fv(u_.tongue_offset, 1, tongue_offset_.data());
+    const float fq2 = static_cast<float>(s_.fine_tongues);
+    glUniform3f(u_.fine_scale, ws.x * fq2, ws.y * fq2 / static_cast<float>(s_.tongue_stretch),
+                0.0f);
+    glUniform3fv(u_.fine_offset, 1, fine_offset_.data());
+    glUniform2f(u_.fine_gap, s_.fine_gap, s_.fine_width);
     glUniform1f(u_.glow, s_.glow);
     glUniform1f(u_.tongue_roots, s_.tongue_roots);
     glUniform1f(u_.cooling, s_.cooling);
@@ -480,6 +492,9 @@ class PerlinFire final : public Element {
     u_.slices = u("u_slices");
     u_.tongue_scale = u("u_tongue_scale");
     u_.tongue_offset = u("u_tongue_offset");
+    u_.fine_scale = u("u_fine_scale");
+    u_.fine_offset = u("u_fine_offset");
+    u_.fine_gap = u("u_fine_gap");
     u_.tongue_gap = u("u_tongue_gap");
     u_.glow = u("u_glow");
     u_.tongue_roots = u("u_tongue_roots");
@@ -589,11 +604,26 @@ class PerlinFire final : public Element {
     const int64_t tongue_rise = tongue_cells * s_.tongue_rise.raw >> Fixed::kFracBits;
     const int64_t tongue_evolve = tongue_cells * s_.tongue_evolve.raw >> Fixed::kFracBits;
     const double tongue_per_noise = s_.tongues / s_.frequency;
+    // The sway: a slow random walk sideways (about kSwayRate new places a
+    // second, smoothly joined), so tongues wander without coming and going.
+    const double sway =
+        s_.tongue_sway *
+        sway_.noise(t * Fixed::from_double(kSwayRate).raw >> Fixed::kFracBits, 0).to_double();
     tongue_offset_[0] = static_cast<float>(
-        std::fmod(drift_x_.to_double() * tongue_per_noise, static_cast<double>(period_)));
+        std::fmod(drift_x_.to_double() * tongue_per_noise + sway, static_cast<double>(period_)));
     tongue_offset_[1] = static_cast<float>((tongue_rise % wrap) * to_float);
     // It evolves through its third axis.
     tongue_offset_[2] = static_cast<float>((tongue_evolve % wrap) * to_float);
+    // The fine tongue field rises and evolves with the turbulence: the flicker
+    // over broad tongues that stand where their fuel burns.
+    const int64_t fine_cells =
+        (t * Fixed::from_double(s_.fine_tongues / s_.tongue_stretch).raw >> Fixed::kFracBits) *
+            s_.speed.raw >>
+        Fixed::kFracBits;
+    fine_offset_[0] = static_cast<float>(std::fmod(
+        drift_x_.to_double() * s_.fine_tongues / s_.frequency, static_cast<double>(period_)));
+    fine_offset_[1] = static_cast<float>((fine_cells % wrap) * to_float);
+    fine_offset_[2] = static_cast<float>((fine_cells % wrap) * to_float);
     if (s_.swell > 0) compute_swell(t);
   }
 
@@ -633,7 +663,7 @@ class PerlinFire final : public Element {
         obstacle, obstacle_relief, color, perm, grad3, grad4, profile, sheet, rise_growth, wobble,
         ramp_here, slices, tongue_scale, tongue_offset, tongue_gap, glow, tongue_roots, cooling,
         trail_lift, swell, swell_scale, image, uv_per_pixel, composite_color, halo, halo_lod,
-        bspline, texels, depth;
+        bspline, texels, depth, fine_scale, fine_offset, fine_gap;
   };
 
   FireSettings s_;
@@ -662,9 +692,11 @@ class PerlinFire final : public Element {
   std::array<float, kMaxOctaves * 3> offsets_{};
   std::array<float, kMaxOctaves * 2> flow_cs_{};
   std::array<float, 3> tongue_offset_{};
+  std::array<float, 3> fine_offset_{};
   std::array<float, kSwellPoints> swell_scale_{};  // the lookup's height scale across the fire
   Flicker breath_;
   Flicker swell_heights_;  // the swell's slow random heights, one signal per point across
+  Flicker sway_;           // where the tongue field has wandered sideways
   Fixed lean_x_, lean_z_, drift_x_, drift_z_, time_, breath_now_ = Fixed::from_int(1);
   Fixed wind_speed_;  // |wind| at the fire this step (L1), m/s
   bool uniforms_dirty_ = true;
@@ -742,6 +774,10 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.occlude = r.boolean("occlude", s.occlude);
   s.tongue_stretch = r.number("tongue_stretch", s.tongue_stretch, 0.25, 32);
   s.tongue_base = static_cast<float>(r.number("tongue_base", s.tongue_base, 0.01, 1));
+  s.fine_tongues = r.number("fine_tongues", s.fine_tongues, 0.1, 64);
+  s.fine_gap = static_cast<float>(r.number("fine_gap", s.fine_gap, 0, 1));
+  s.fine_width = static_cast<float>(r.number("fine_width", s.fine_width, 0.01, 1));
+  s.tongue_sway = r.number("tongue_sway", s.tongue_sway, 0, 8);
   s.speed = r.fixed("speed", s.speed.to_double(), 0, 10);
   s.tongue_rise = r.fixed("tongue_rise", s.tongue_rise.to_double(), 0, 4);
   s.tongue_evolve = r.fixed("tongue_evolve", s.tongue_evolve.to_double(), 0, 4);

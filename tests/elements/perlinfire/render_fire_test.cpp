@@ -291,6 +291,118 @@ TEST(PerlinFire, TonguesThatDoNotRiseStandWhereTheyBurn) {
   EXPECT_LT(evolving, standing - 0.3);
 }
 
+// Separate lit pieces (luma > 40, at least 3 pixels, 4-connected) above a
+// height of the volume (a fraction of its height, through its centre).
+int pieces_above(const test::Frame& f, float from) {
+  const int y1 = std::min(kH, static_cast<int>(project({0, kSize.y * from, 0}).y));
+  std::vector<int> seen(static_cast<size_t>(kW * kH), 0);
+  int pieces = 0;
+  std::vector<int> stack;
+  for (int y0 = 0; y0 < y1; ++y0)
+    for (int x0 = 0; x0 < kW; ++x0) {
+      if (seen[static_cast<size_t>(y0 * kW + x0)] || f.luma(x0, y0) <= 40) continue;
+      int size = 0;
+      stack.assign(1, y0 * kW + x0);
+      seen[static_cast<size_t>(y0 * kW + x0)] = 1;
+      while (!stack.empty()) {
+        const int i = stack.back();
+        stack.pop_back();
+        ++size;
+        const int x = i % kW, y = i / kW;
+        for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx < 0 || nx >= kW || ny < 0 || ny >= y1) continue;
+          int& s = seen[static_cast<size_t>(ny * kW + nx)];
+          if (!s && f.luma(nx, ny) > 40) s = 1, stack.push_back(ny * kW + nx);
+        }
+      }
+      pieces += size >= 3;
+    }
+  return pieces;
+}
+
+TEST(PerlinFire, FineTonguesTearTheTipsOverBroadTonguesThatStand) {
+  // Broad tongues that stand where their fuel burns, with and without a fine
+  // tongue field rising over them: with it, the flames' upper part is torn
+  // into more pieces (tips tearing off, as a real fire's), while where the
+  // broad tongues stand across the bed stays put over a second.
+  const std::string broad =
+      "tongues = 5\ntongue_gap = 1\ntongue_width = 0.5\ntongue_roots = 1\ntongue_base = 0.05\n"
+      "tongue_rise = 0\ntongue_evolve = 0.03\ndisplacement = 0.6\nglow = 0\n";
+  struct Seen {
+    double pieces, kept;
+  };
+  // Where the tongues stand: the columns smoothed over a fine tongue's width.
+  const auto smoothed = [](const std::vector<double>& c) {
+    std::vector<double> out(c.size(), 0.0);
+    for (size_t i = 0; i < c.size(); ++i)
+      for (size_t j = i >= 3 ? i - 3 : 0; j < std::min(c.size(), i + 4); ++j) out[i] += c[j];
+    return out;
+  };
+  const auto seen = [&](const std::string& extra) {
+    test::RenderHarness h(scene(broad + extra), kW, kH, 3);
+    h.run(10);
+    const std::vector<double> first = smoothed(tongue_columns(h.read()));
+    double pieces = 0;
+    for (int k = 0; k < 6; ++k) {
+      h.run(10);
+      pieces += pieces_above(h.read(), 0.04f) / 6.0;
+    }
+    return Seen{pieces, test::correlation(first, smoothed(tongue_columns(h.read())))};
+  };
+  const Seen plain = seen(""), fine = seen("fine_gap = 1\nfine_tongues = 8\nfine_width = 0.25\n");
+  ASSERT_GT(plain.kept, 0.9) << "the broad tongues do not stand";
+  EXPECT_GT(fine.kept, 0.8);
+  EXPECT_GT(fine.pieces, 1.3 * plain.pieces) << "without " << plain.pieces;
+}
+
+TEST(PerlinFire, TongueSwayMovesTheTonguesSidewaysNotAway) {
+  // Broad tongues in a field that does not change in place: with a sway they
+  // wander sideways over a few seconds (where they stand across the bed is
+  // the first profile shifted), without it they stay; either way the fire
+  // keeps about its light.
+  const std::string broad =
+      "tongues = 5\ntongue_gap = 1\ntongue_width = 0.5\ntongue_roots = 1\ntongue_base = 0.05\n"
+      "tongue_rise = 0\ntongue_evolve = 0\ndisplacement = 0.1\nglow = 0\nbreathing = 0\n";
+  struct Seen {
+    int widest_shift;
+    double light_low, light_high;
+  };
+  const auto seen = [&](const std::string& extra) {
+    test::RenderHarness h(scene(broad + extra), kW, kH, 3);
+    h.run(10);
+    const std::vector<double> a = tongue_columns(h.read());
+    double sa = 0;
+    for (double v : a) sa += v;
+    Seen out{0, 1e9, 0};
+    for (int k = 0; k < 10; ++k) {
+      h.run(30);  // every half second for five seconds
+      const std::vector<double> b = tongue_columns(h.read());
+      // The shift (pixels) that best lines this profile up with the first.
+      int best = 0;
+      double best_r = -2;
+      for (int d = -20; d <= 20; ++d) {
+        std::vector<double> x, y;
+        for (int i = 0; i < kW; ++i)
+          if (i + d >= 0 && i + d < kW) x.push_back(a[i]), y.push_back(b[i + d]);
+        const double r = test::correlation(x, y);
+        if (r > best_r) best_r = r, best = d;
+      }
+      double sb = 0;
+      for (double v : b) sb += v;
+      out.widest_shift = std::max(out.widest_shift, std::abs(best));
+      out.light_low = std::min(out.light_low, sb / sa);
+      out.light_high = std::max(out.light_high, sb / sa);
+    }
+    return out;
+  };
+  const Seen still = seen(""), swaying = seen("tongue_sway = 1\n");
+  EXPECT_EQ(still.widest_shift, 0);
+  EXPECT_GE(swaying.widest_shift, 4);
+  EXPECT_GT(swaying.light_low, 0.85);
+  EXPECT_LT(swaying.light_high, 1.15);
+}
+
 TEST(PerlinFire, CoolingDimsTheRisenFlamesNotTheBed) {
   // The same fire (one seed, one frame) with and without cooling: what rose
   // high (tips, pieces that broke off) is dim, while the bed, below where
