@@ -47,7 +47,7 @@ uniform float u_rise_growth; // displacement at the base, relative to the top's
 uniform float u_wobble;      // how much the noise also moves the lookup radius
 uniform int u_ramp_here;     // 1: colour here; 0: write the exposure for the composite
 uniform int u_slices;        // flame shading: camera-facing slabs sampled
-uniform vec3 u_tongue_scale;  // flame shading: unit space -> the tongue field's lattice (x, y)
+uniform vec3 u_tongue_scale;  // flame shading: unit space -> the tongue field's lattice (x, y); z: a comb's wander (0: creases)
 uniform vec3 u_tongue_offset; // its drift, rise and evolution, wrapped where the noise repeats
 uniform float u_tongue_roots; // how deep the gaps cut at the very base (separate roots)
 uniform float u_glow;        // flame shading: brightness of the glow around the flames
@@ -203,7 +203,17 @@ void main() {
         // them in; they open from the base upwards and rise with the fire. The
         // field evolves by moving through its third axis (no spin: spinning
         // all cells at once would make the whole fire pulse in step).
-        float n = abs(pf_snoise3(vec3(q.x, q.y, 0.0) * u_tongue_scale - u_tongue_offset));
+        float n;
+        if (u_tongue_scale.z > 0.0) {
+          // A comb: one gap per cell across, wandering along the field, so
+          // the share of the fire the gaps take stays the same.
+          float warp = pf_snoise3(vec3(q.x * 0.5, q.y, 0.0) * vec3(u_tongue_scale.xy, 0.0) -
+                                  u_tongue_offset * vec3(0.5, 1.0, 1.0));
+          n = abs(sin(3.14159265 * (q.x * u_tongue_scale.x - u_tongue_offset.x +
+                                    u_tongue_scale.z * warp)));
+        } else {
+          n = abs(pf_snoise3(vec3(q.x, q.y, 0.0) * u_tongue_scale - u_tongue_offset));
+        }
         float base = max(u_obstacle, 0.0);
         float depth = u_tongue_gap.x *
                       mix(u_tongue_roots, 1.0, smoothstep(base, base + u_tongue_gap.z, p.y));

@@ -81,6 +81,8 @@ struct FireSettings {
   float fine_gap = 0.0f;     // how deep its gaps cut (0: none); it rises with the turbulence
   float fine_width = 0.55f;  // how wide its gaps are (of its |noise|)
   double tongue_sway = 0;    // how far the tongue field wanders sideways (its cells), slowly
+  float tongue_comb = 0;     // 0: gaps at the tongue field's creases; > 0: evenly spaced gaps
+                             // that wander by up to this share of their spacing
   Vec3 color{1, 1, 1};
   bool additive = true;
   float obstacle = 0;         // fraction of the volume's height that is solid (logs, grate)
@@ -415,7 +417,7 @@ class PerlinFire final : public Element {
     glUniform1i(u_.slices, std::clamp(q.steps / 3, 2, 16));
     const float tq = static_cast<float>(s_.tongues);
     glUniform3f(u_.tongue_scale, ws.x * tq, ws.y * tq / static_cast<float>(s_.tongue_stretch),
-                0.0f);
+                s_.tongue_comb);
     glUniform3fv(u_.tongue_offset, 1, tongue_offset_.data());
     const float fq2 = static_cast<float>(s_.fine_tongues);
     glUniform3f(u_.fine_scale, ws.x * fq2, ws.y * fq2 / static_cast<float>(s_.tongue_stretch),
@@ -778,6 +780,7 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.fine_gap = static_cast<float>(r.number("fine_gap", s.fine_gap, 0, 1));
   s.fine_width = static_cast<float>(r.number("fine_width", s.fine_width, 0.01, 1));
   s.tongue_sway = r.number("tongue_sway", s.tongue_sway, 0, 8);
+  s.tongue_comb = static_cast<float>(r.number("tongue_comb", s.tongue_comb, 0, 2));
   s.speed = r.fixed("speed", s.speed.to_double(), 0, 10);
   s.tongue_rise = r.fixed("tongue_rise", s.tongue_rise.to_double(), 0, 4);
   s.tongue_evolve = r.fixed("tongue_evolve", s.tongue_evolve.to_double(), 0, 4);
