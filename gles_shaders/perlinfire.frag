@@ -55,7 +55,7 @@ uniform float u_cooling;     // flame shading: share of the heat lost from the b
 uniform float u_trail_lift;  // a shutter's trail: what its fade takes off (1/255) over this frame's share
 uniform float u_swell;       // flame shading: how far the flames' height swells and sinks across the fire
 uniform float u_swell_scale[PF_SWELL_POINTS];  // the lookup's height scale at points across the fire (perlinfire.cpp)
-uniform vec3 u_fine_scale;   // flame shading: the fine tongue field's lattice, its offset, its gaps' depth
+uniform vec3 u_fine_scale;   // flame shading: the fine tongue field's lattice (z: 0, creases), its offset, its gaps' depth
 uniform vec3 u_fine_offset;
 uniform vec2 u_fine_gap;
 uniform vec3 u_tongue_gap;    // x: how deep gaps between tongues cut (0: none); y: their width;
@@ -81,6 +81,19 @@ float pf_turbulence(vec3 q) {
     f *= 2.0;
   }
   return sum;
+}
+
+// A tongue field's |value| at q (unit space): 0 in the gaps between tongues.
+// scale: unit space -> its lattice (x, y), z: 0 for the noise's creases, or
+// a comb's wander (one gap per cell across, wandering along the noise by up
+// to that share of the spacing, so the gaps' share of the fire stays steady).
+float pf_tongue_field(vec3 q, vec3 scale, vec3 offset) {
+  if (scale.z > 0.0) {
+    float warp = pf_snoise3(vec3(q.x * 0.5, q.y, 0.0) * vec3(scale.xy, 0.0) -
+                            offset * vec3(0.5, 1.0, 1.0));
+    return abs(sin(3.14159265 * (q.x * scale.x - offset.x + scale.z * warp)));
+  }
+  return abs(pf_snoise3(vec3(q.x, q.y, 0.0) * vec3(scale.xy, 0.0) - offset));
 }
 
 void main() {
@@ -203,17 +216,7 @@ void main() {
         // them in; they open from the base upwards and rise with the fire. The
         // field evolves by moving through its third axis (no spin: spinning
         // all cells at once would make the whole fire pulse in step).
-        float n;
-        if (u_tongue_scale.z > 0.0) {
-          // A comb: one gap per cell across, wandering along the field, so
-          // the share of the fire the gaps take stays the same.
-          float warp = pf_snoise3(vec3(q.x * 0.5, q.y, 0.0) * vec3(u_tongue_scale.xy, 0.0) -
-                                  u_tongue_offset * vec3(0.5, 1.0, 1.0));
-          n = abs(sin(3.14159265 * (q.x * u_tongue_scale.x - u_tongue_offset.x +
-                                    u_tongue_scale.z * warp)));
-        } else {
-          n = abs(pf_snoise3(vec3(q.x, q.y, 0.0) * u_tongue_scale - u_tongue_offset));
-        }
+        float n = pf_tongue_field(q, u_tongue_scale, u_tongue_offset);
         float base = max(u_obstacle, 0.0);
         float depth = u_tongue_gap.x *
                       mix(u_tongue_roots, 1.0, smoothstep(base, base + u_tongue_gap.z, p.y));
@@ -221,7 +224,7 @@ void main() {
         float w = u_tongue_gap.y * mix(0.6, 1.4, clamp(p.y, 0.0, 1.0));
         density *= 1.0 - depth * (1.0 - smoothstep(0.4 * w, w, n));
         if (u_fine_gap.x > 0.0) {
-          float m = abs(pf_snoise3(vec3(q.x, q.y, 0.0) * u_fine_scale - u_fine_offset));
+          float m = pf_tongue_field(q, u_fine_scale, u_fine_offset);
           float wf = u_fine_gap.y * mix(0.6, 1.4, clamp(p.y, 0.0, 1.0));
           density *= 1.0 - u_fine_gap.x * depth * (1.0 - smoothstep(0.4 * wf, wf, m));
         }

@@ -80,6 +80,7 @@ struct FireSettings {
   double fine_tongues = 15;  // a second, finer tongue field's cells per fire height across
   float fine_gap = 0.0f;     // how deep its gaps cut (0: none); it rises with the turbulence
   float fine_width = 0.55f;  // how wide its gaps are (of its |noise|)
+  double fine_stretch = 6;   // how much taller than wide its cells are
   double tongue_sway = 0;    // how far the tongue field wanders sideways (its cells), slowly
   float tongue_comb = 0;     // 0: gaps at the tongue field's creases; > 0: evenly spaced gaps
                              // that wander by up to this share of their spacing
@@ -420,8 +421,7 @@ class PerlinFire final : public Element {
                 s_.tongue_comb);
     glUniform3fv(u_.tongue_offset, 1, tongue_offset_.data());
     const float fq2 = static_cast<float>(s_.fine_tongues);
-    glUniform3f(u_.fine_scale, ws.x * fq2, ws.y * fq2 / static_cast<float>(s_.tongue_stretch),
-                0.0f);
+    glUniform3f(u_.fine_scale, ws.x * fq2, ws.y * fq2 / static_cast<float>(s_.fine_stretch), 0.0f);
     glUniform3fv(u_.fine_offset, 1, fine_offset_.data());
     glUniform2f(u_.fine_gap, s_.fine_gap, s_.fine_width);
     glUniform1f(u_.glow, s_.glow);
@@ -619,7 +619,7 @@ class PerlinFire final : public Element {
     // The fine tongue field rises and evolves with the turbulence: the flicker
     // over broad tongues that stand where their fuel burns.
     const int64_t fine_cells =
-        (t * Fixed::from_double(s_.fine_tongues / s_.tongue_stretch).raw >> Fixed::kFracBits) *
+        (t * Fixed::from_double(s_.fine_tongues / s_.fine_stretch).raw >> Fixed::kFracBits) *
             s_.speed.raw >>
         Fixed::kFracBits;
     fine_offset_[0] = static_cast<float>(std::fmod(
@@ -779,6 +779,7 @@ std::unique_ptr<ElementSpec> parse(ParamReader& r) {
   s.fine_tongues = r.number("fine_tongues", s.fine_tongues, 0.1, 64);
   s.fine_gap = static_cast<float>(r.number("fine_gap", s.fine_gap, 0, 1));
   s.fine_width = static_cast<float>(r.number("fine_width", s.fine_width, 0.01, 1));
+  s.fine_stretch = r.number("fine_stretch", s.fine_stretch, 0.25, 32);
   s.tongue_sway = r.number("tongue_sway", s.tongue_sway, 0, 8);
   s.tongue_comb = static_cast<float>(r.number("tongue_comb", s.tongue_comb, 0, 2));
   s.speed = r.fixed("speed", s.speed.to_double(), 0, 10);
