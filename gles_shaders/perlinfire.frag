@@ -55,9 +55,9 @@ uniform float u_cooling;     // flame shading: share of the heat lost from the b
 uniform float u_trail_lift;  // a shutter's trail: what its fade takes off (1/255) over this frame's share
 uniform float u_swell;       // flame shading: how far the flames' height swells and sinks across the fire
 uniform float u_swell_scale[PF_SWELL_POINTS];  // the lookup's height scale at points across the fire (perlinfire.cpp)
-uniform vec3 u_fine_scale;   // flame shading: the fine tongue field's lattice (z: 0, creases), its offset, its gaps' depth
-uniform vec3 u_fine_offset;
-uniform vec2 u_fine_gap;
+uniform vec3 u_fine_scale;   // flame shading: the fine tongue field's lattice (x, y; z 0: creases)
+uniform vec3 u_fine_offset;  // its drift, rise and evolution (with the turbulence's)
+uniform vec2 u_fine_gap;     // x: how deep its gaps cut, of the broad gaps' depth (0: none); y: their width
 uniform vec3 u_tongue_gap;    // x: how deep gaps between tongues cut (0: none); y: their width;
                               // z: the height above the base where they reach full depth
 
