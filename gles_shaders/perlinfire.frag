@@ -221,11 +221,12 @@ void main() {
         float depth = u_tongue_gap.x *
                       mix(u_tongue_roots, 1.0, smoothstep(base, base + u_tongue_gap.z, p.y));
         // Gaps widen upwards, so tongues taper to their tips.
-        float w = u_tongue_gap.y * mix(0.6, 1.4, clamp(p.y, 0.0, 1.0));
+        float widen = mix(0.6, 1.4, clamp(p.y, 0.0, 1.0));
+        float w = u_tongue_gap.y * widen;
         density *= 1.0 - depth * (1.0 - smoothstep(0.4 * w, w, n));
         if (u_fine_gap.x > 0.0) {
           float m = pf_tongue_field(q, u_fine_scale, u_fine_offset);
-          float wf = u_fine_gap.y * mix(0.6, 1.4, clamp(p.y, 0.0, 1.0));
+          float wf = u_fine_gap.y * widen;
           density *= 1.0 - u_fine_gap.x * depth * (1.0 - smoothstep(0.4 * wf, wf, m));
         }
       }

@@ -1,6 +1,7 @@
 #include "support/render_harness.h"
 
 #include <algorithm>
+#include <vector>
 
 #include "core/image.h"
 #include "gl/gles.h"
@@ -17,6 +18,37 @@ Frame::Lit Frame::lit_above(double gray) const {
         lit.bottom = std::max(lit.bottom, y);
       }
   return lit;
+}
+
+int Frame::regions_above(double gray, int min_pixels, int rows) const {
+  const int h = rows < 0 ? height : std::min(rows, height);
+  std::vector<char> seen(static_cast<size_t>(width) * height, 0);
+  int regions = 0;
+  std::vector<int> stack;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < width; ++x) {
+      if (seen[y * width + x] || luma(x, y) <= gray) continue;
+      int size = 0;
+      stack.push_back(y * width + x);
+      seen[y * width + x] = 1;
+      while (!stack.empty()) {
+        const int i = stack.back();
+        stack.pop_back();
+        ++size;
+        const int px = i % width, py = i / width;
+        const int nb[4][2] = {{px + 1, py}, {px - 1, py}, {px, py + 1}, {px, py - 1}};
+        for (const auto& n : nb) {
+          if (n[0] < 0 || n[1] < 0 || n[0] >= width || n[1] >= h) continue;
+          const int j = n[1] * width + n[0];
+          if (!seen[j] && luma(n[0], n[1]) > gray) {
+            seen[j] = 1;
+            stack.push_back(j);
+          }
+        }
+      }
+      regions += size >= min_pixels;
+    }
+  return regions;
 }
 
 double Frame::mean_luma(int x0, int y0, int x1, int y1) const {

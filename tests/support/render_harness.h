@@ -39,6 +39,9 @@ struct Frame {
   Lit lit_above(double gray) const;
   // The mean luma of the columns x0..x1-1 of the rows y0..y1-1 (top row 0).
   double mean_luma(int x0, int y0, int x1, int y1) const;
+  // Separate regions (4-connected) of pixels whose luma is above `gray`, of
+  // at least `min_pixels` pixels, in the rows above `rows` (all: -1).
+  int regions_above(double gray, int min_pixels = 1, int rows = -1) const;
 };
 
 class RenderHarness {

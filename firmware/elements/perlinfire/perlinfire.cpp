@@ -579,11 +579,20 @@ class PerlinFire final : public Element {
     uniforms_dirty_ = false;
     const int64_t t = time_.raw;  // Q16.16 seconds
     const int64_t wrap = period_ << Fixed::kFracBits;
+    // How far a lattice with this many cells per fire height along y has
+    // risen with the turbulence (Q16.16 cells), and where a field with this
+    // many cells per fire height across has drifted with the wind (cells).
+    const auto risen = [&](double cells_per_height) {
+      return (t * Fixed::from_double(cells_per_height).raw >> Fixed::kFracBits) * s_.speed.raw >>
+             Fixed::kFracBits;
+    };
+    const auto drifted = [&](double cells_per_height, double extra = 0) {
+      return static_cast<float>(
+          std::fmod(drift_x_.to_double() * (cells_per_height / s_.frequency) + extra,
+                    static_cast<double>(period_)));
+    };
     // Lattice cells per fire height along y (taller cells when stretched).
-    const int64_t rise =
-        (t * Fixed::from_double(s_.frequency / s_.stretch).raw >> Fixed::kFracBits) *
-            s_.speed.raw >>
-        Fixed::kFracBits;
+    const int64_t rise = risen(s_.frequency / s_.stretch);
     const int64_t evolve = t * s_.evolve.raw >> Fixed::kFracBits;
     const int64_t spin = t * s_.flow_speed.raw >> Fixed::kFracBits;  // radians, Q16.16
     const double to_float = 1.0 / Fixed::kOne;
@@ -599,31 +608,22 @@ class PerlinFire final : public Element {
       flow_cs_[i * 2 + 1] = static_cast<float>(std::sin(angle));
     }
     // The tongue field rises with the turbulence (its own lattice) and drifts with the wind.
-    const int64_t tongue_cells =
-        (t * Fixed::from_double(s_.tongues / s_.tongue_stretch).raw >> Fixed::kFracBits) *
-            s_.speed.raw >>
-        Fixed::kFracBits;
+    const int64_t tongue_cells = risen(s_.tongues / s_.tongue_stretch);
     const int64_t tongue_rise = tongue_cells * s_.tongue_rise.raw >> Fixed::kFracBits;
     const int64_t tongue_evolve = tongue_cells * s_.tongue_evolve.raw >> Fixed::kFracBits;
-    const double tongue_per_noise = s_.tongues / s_.frequency;
     // The sway: a slow random walk sideways (about kSwayRate new places a
     // second, smoothly joined), so tongues wander without coming and going.
     const double sway =
         s_.tongue_sway *
         sway_.noise(t * Fixed::from_double(kSwayRate).raw >> Fixed::kFracBits, 0).to_double();
-    tongue_offset_[0] = static_cast<float>(
-        std::fmod(drift_x_.to_double() * tongue_per_noise + sway, static_cast<double>(period_)));
+    tongue_offset_[0] = drifted(s_.tongues, sway);
     tongue_offset_[1] = static_cast<float>((tongue_rise % wrap) * to_float);
     // It evolves through its third axis.
     tongue_offset_[2] = static_cast<float>((tongue_evolve % wrap) * to_float);
     // The fine tongue field rises and evolves with the turbulence: the flicker
     // over broad tongues that stand where their fuel burns.
-    const int64_t fine_cells =
-        (t * Fixed::from_double(s_.fine_tongues / s_.fine_stretch).raw >> Fixed::kFracBits) *
-            s_.speed.raw >>
-        Fixed::kFracBits;
-    fine_offset_[0] = static_cast<float>(std::fmod(
-        drift_x_.to_double() * s_.fine_tongues / s_.frequency, static_cast<double>(period_)));
+    const int64_t fine_cells = risen(s_.fine_tongues / s_.fine_stretch);
+    fine_offset_[0] = drifted(s_.fine_tongues);
     fine_offset_[1] = static_cast<float>((fine_cells % wrap) * to_float);
     fine_offset_[2] = static_cast<float>((fine_cells % wrap) * to_float);
     if (s_.swell > 0) compute_swell(t);

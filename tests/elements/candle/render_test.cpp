@@ -43,35 +43,6 @@ Vec2 project(Vec3 p) {
   return {(c.x / c.w + 1) * 0.5f * kW, (1 - c.y / c.w) * 0.5f * kH};
 }
 
-// Connected regions of pixels brighter than `level` (4-neighbour flood fill).
-int bright_regions(const test::Frame& f, double level) {
-  std::vector<char> seen(static_cast<size_t>(f.width) * f.height, 0);
-  int regions = 0;
-  std::vector<int> stack;
-  for (int y = 0; y < f.height; ++y)
-    for (int x = 0; x < f.width; ++x) {
-      if (seen[y * f.width + x] || f.luma(x, y) <= level) continue;
-      ++regions;
-      stack.push_back(y * f.width + x);
-      seen[y * f.width + x] = 1;
-      while (!stack.empty()) {
-        const int i = stack.back();
-        stack.pop_back();
-        const int px = i % f.width, py = i / f.width;
-        const int nb[4][2] = {{px + 1, py}, {px - 1, py}, {px, py + 1}, {px, py - 1}};
-        for (const auto& n : nb) {
-          if (n[0] < 0 || n[1] < 0 || n[0] >= f.width || n[1] >= f.height) continue;
-          const int j = n[1] * f.width + n[0];
-          if (!seen[j] && f.luma(n[0], n[1]) > level) {
-            seen[j] = 1;
-            stack.push_back(j);
-          }
-        }
-      }
-    }
-  return regions;
-}
-
 TEST(CandleRender, FlamesStandAboveTheirWicks) {
   test::RenderHarness h(scene(3), kW, kH, 4);
   h.run(30);
@@ -135,14 +106,14 @@ TEST(CandleRender, GlowLightsTheAirAroundTheFlame) {
 TEST(CandleRender, EveryCandleShows) {
   for (int n : {1, 3, 5}) {
     SCOPED_TRACE(n);
-    EXPECT_EQ(bright_regions(render(scene(n), 2, 10), 180), n);
+    EXPECT_EQ(render(scene(n), 2, 10).regions_above(180), n);
   }
 }
 
 TEST(CandleRender, BlownOutThenRelit) {
   test::RenderHarness h(scene(3, 0.55, "[element.extinguish]\nrelight_seconds = 1.5\n"), kW, kH, 3);
   h.run(5);
-  ASSERT_EQ(bright_regions(h.read(), 180), 3);
+  ASSERT_EQ(h.read().regions_above(180), 3);
   h.scene().wind().push(*key_wind_event(Key::kBlowOut, h.scene().wind().spec()));
   LoopSettings one;
   one.max_frames = 1;
@@ -150,13 +121,13 @@ TEST(CandleRender, BlownOutThenRelit) {
   for (int i = 0; i < 60 * 5; ++i) {
     run_frame_loop(h.display(), h.scene(), one);
     if (i % 5) continue;
-    const int n = bright_regions(h.read(), 180);
+    const int n = h.read().regions_above(180);
     fewest = std::min(fewest, n);
     dark_frames += n == 0;
   }
   EXPECT_EQ(fewest, 0);
   EXPECT_GT(dark_frames, 3);
-  EXPECT_EQ(bright_regions(h.read(), 180), 3);
+  EXPECT_EQ(h.read().regions_above(180), 3);
 }
 
 // A candle blown out leaves a wisp of smoke above its wick that rises and

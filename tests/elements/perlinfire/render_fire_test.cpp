@@ -294,32 +294,15 @@ TEST(PerlinFire, TonguesThatDoNotRiseStandWhereTheyBurn) {
 // Separate lit pieces (luma > 40, at least 3 pixels, 4-connected) above a
 // height of the volume (a fraction of its height, through its centre).
 int pieces_above(const test::Frame& f, float from) {
-  const int y1 = std::min(kH, static_cast<int>(project({0, kSize.y * from, 0}).y));
-  std::vector<int> seen(static_cast<size_t>(kW * kH), 0);
-  int pieces = 0;
-  std::vector<int> stack;
-  for (int y0 = 0; y0 < y1; ++y0)
-    for (int x0 = 0; x0 < kW; ++x0) {
-      if (seen[static_cast<size_t>(y0 * kW + x0)] || f.luma(x0, y0) <= 40) continue;
-      int size = 0;
-      stack.assign(1, y0 * kW + x0);
-      seen[static_cast<size_t>(y0 * kW + x0)] = 1;
-      while (!stack.empty()) {
-        const int i = stack.back();
-        stack.pop_back();
-        ++size;
-        const int x = i % kW, y = i / kW;
-        for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
-          const int nx = x + dx, ny = y + dy;
-          if (nx < 0 || nx >= kW || ny < 0 || ny >= y1) continue;
-          int& s = seen[static_cast<size_t>(ny * kW + nx)];
-          if (!s && f.luma(nx, ny) > 40) s = 1, stack.push_back(ny * kW + nx);
-        }
-      }
-      pieces += size >= 3;
-    }
-  return pieces;
+  return f.regions_above(40, 3, std::max(0, static_cast<int>(project({0, kSize.y * from, 0}).y)));
 }
+
+// A few broad tongues that stand where their fuel burns (the tests of the
+// fine field, the sway and the comb add how wide, how fast they change, how
+// much turbulence).
+const std::string kStandingTongues =
+    "tongues = 5\ntongue_gap = 1\ntongue_roots = 1\ntongue_base = 0.05\ntongue_rise = 0\n"
+    "glow = 0\n";
 
 TEST(PerlinFire, FineTonguesTearTheTipsOverBroadTonguesThatStand) {
   // Broad tongues that stand where their fuel burns, with and without a fine
@@ -327,8 +310,7 @@ TEST(PerlinFire, FineTonguesTearTheTipsOverBroadTonguesThatStand) {
   // into more pieces (tips tearing off, as a real fire's), while where the
   // broad tongues stand across the bed stays put over a second.
   const std::string broad =
-      "tongues = 5\ntongue_gap = 1\ntongue_width = 0.5\ntongue_roots = 1\ntongue_base = 0.05\n"
-      "tongue_rise = 0\ntongue_evolve = 0.03\ndisplacement = 0.6\nglow = 0\n";
+      kStandingTongues + "tongue_width = 0.5\ntongue_evolve = 0.03\ndisplacement = 0.6\n";
   struct Seen {
     double pieces, kept;
   };
@@ -362,8 +344,8 @@ TEST(PerlinFire, TongueSwayMovesTheTonguesSidewaysNotAway) {
   // the first profile shifted), without it they stay; either way the fire
   // keeps about its light.
   const std::string broad =
-      "tongues = 5\ntongue_gap = 1\ntongue_width = 0.5\ntongue_roots = 1\ntongue_base = 0.05\n"
-      "tongue_rise = 0\ntongue_evolve = 0\ndisplacement = 0.1\nglow = 0\nbreathing = 0\n";
+      kStandingTongues +
+      "tongue_width = 0.5\ntongue_evolve = 0\ndisplacement = 0.1\nbreathing = 0\n";
   struct Seen {
     int widest_shift;
     double light_low, light_high;
@@ -410,18 +392,14 @@ TEST(PerlinFire, TongueCombKeepsTheFiresLightSteady) {
   // spaced gaps that wander along the field takes about the same share all the
   // time. The lit area sampled every quarter second for four seconds.
   const std::string broad =
-      "tongues = 5\ntongue_gap = 1\ntongue_width = 0.55\ntongue_roots = 1\ntongue_base = 0.05\n"
-      "tongue_rise = 0\ntongue_evolve = 0.3\ndisplacement = 0.3\nglow = 0\nbreathing = 0\n";
+      kStandingTongues +
+      "tongue_width = 0.55\ntongue_evolve = 0.3\ndisplacement = 0.3\nbreathing = 0\n";
   const auto swing = [&](const std::string& extra) {
     test::RenderHarness h(scene(broad + extra), kW, kH, 3);
     std::vector<double> lit;
     for (int k = 0; k < 16; ++k) {
       h.run(15);
-      const test::Frame f = h.read();
-      double n = 0;
-      for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) n += f.luma(x, y) > 40;
-      lit.push_back(n);
+      lit.push_back(h.read().lit_above(40).count);
     }
     double mean = 0, var = 0;
     for (double v : lit) mean += v / lit.size();
