@@ -14,7 +14,10 @@
 // into tongues that split and detach), the hot path length through the sheets
 // is exposed like a camera sees a flame (cores clip to white) and coloured
 // by a black-body ramp (fire_ramp.glsl, applied here or after upscaling);
-// PF_SWELL_POINTS is the number of the swell's heights across the fire.
+// PF_SWELL_POINTS is the number of the swell's heights across the fire;
+// PF_TONGUE_COMB and PF_FINE_TONGUES are defined only for a fire that uses
+// them (tongue_comb, fine_gap above 0): on a CPU renderer even a branch
+// on a uniform that is never taken cost the Perlin fireplace 11% a frame.
 precision highp float;
 precision highp int;
 
@@ -88,11 +91,13 @@ float pf_turbulence(vec3 q) {
 // a comb's wander (one gap per cell across, wandering along the noise by up
 // to that share of the spacing, so the gaps' share of the fire stays steady).
 float pf_tongue_field(vec3 q, vec3 scale, vec3 offset) {
+#ifdef PF_TONGUE_COMB
   if (scale.z > 0.0) {
     float warp = pf_snoise3(vec3(q.x * 0.5, q.y, 0.0) * vec3(scale.xy, 0.0) -
                             offset * vec3(0.5, 1.0, 1.0));
     return abs(sin(3.14159265 * (q.x * scale.x - offset.x + scale.z * warp)));
   }
+#endif
   return abs(pf_snoise3(vec3(q.x, q.y, 0.0) * vec3(scale.xy, 0.0) - offset));
 }
 
@@ -224,11 +229,13 @@ void main() {
         float widen = mix(0.6, 1.4, clamp(p.y, 0.0, 1.0));
         float w = u_tongue_gap.y * widen;
         density *= 1.0 - depth * (1.0 - smoothstep(0.4 * w, w, n));
-        if (u_fine_gap.x > 0.0) {
+#ifdef PF_FINE_TONGUES
+        {
           float m = pf_tongue_field(q, u_fine_scale, u_fine_offset);
           float wf = u_fine_gap.y * widen;
           density *= 1.0 - u_fine_gap.x * depth * (1.0 - smoothstep(0.4 * wf, wf, m));
         }
+#endif
       }
       float sheet = clamp((density - u_sheet.x) / u_sheet.y, 0.0, 1.0);
       // Heat: the profile's straight colour (its luminance), hotter at the base.

@@ -162,7 +162,9 @@ class PerlinFire final : public Element {
         sway_(seed ^ 0x73776179ULL) {
     program_ = Program::from_library("perlinfire.vert",
                                      {"perlinfire_noise.frag", "fire_ramp.frag", "perlinfire.frag"},
-                                     perlinfire_defines(s.noise, s.shading));
+                                     perlinfire_defines(s.noise, s.shading) +
+                                         (s.tongue_comb > 0 ? "#define PF_TONGUE_COMB\n" : "") +
+                                         (s.fine_gap > 0 ? "#define PF_FINE_TONGUES\n" : ""));
     // The upscaling pass: the ramp (sheets colour after upscaling), then the composite.
     composite_ = Program::from_library(
         "fullscreen.vert", {"fire_ramp.frag", "perlinfire_composite.frag"},
