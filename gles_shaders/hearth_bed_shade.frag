@@ -1,6 +1,7 @@
 #version 300 es
 // A bed of embers, every frame: each coal's glow from the hearth's cache
-// (hearth_bed.frag, read at this pixel), pulsing at its own pace; ash and
+// (hearth_bed.frag, read at this pixel), pulsing at its own irregular pace
+// (value_noise.frag's ember_pulse, put before this); ash and
 // char fade it out at the rim. Premultiplied over what is below.
 precision highp float;
 
@@ -16,7 +17,7 @@ void main() {
   float r = length(v_uv);
   if (r >= 1.0) discard;
   vec4 k = texelFetch(u_cache, ivec2(gl_FragCoord.xy) - u_origin, 0);
-  float pulse = 0.65 + 0.35 * sin(u_time * (0.6 + 1.4 * k.z) + k.w * 6.2831);
+  float pulse = 0.3 + 0.7 * ember_pulse(u_time, 0.2 + 0.45 * k.z, k.w);
   float heat = (k.x + k.y * (1.0 / 255.0)) * pulse * u_embers;
   vec3 glow = vec3(1.0, 0.2, 0.02) * heat * 1.6 + vec3(1.0, 0.55, 0.15) * heat * heat * 1.2;
   vec3 ash = vec3(0.05, 0.04, 0.035) * (0.5 + u_light * 0.5);

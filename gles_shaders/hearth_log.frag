@@ -4,8 +4,12 @@
 // black where the fire licks it (the top and the side facing the fire) and
 // along its underside over the coals, the char broken into blocks whose
 // cracks glow; pale end grain with rings and a burnt rim. Out: the unlit
-// colour (RGB10_A2) and the cracks' glow (two 8-bit halves) with their
-// pulse's two hashes. hearth_log_shade.frag lights it and pulses the cracks
+// colour (RGB10_A2), the cracks' glow (two 8-bit halves) with their
+// pulse's two hashes, and the surface's normal with the relief of the bark's
+// plates and fissures and of the char's blocks (RGBA8, 0.5 + 0.5 n), so the
+// firelight picks out the relief: lit from one side, a fissure's far wall
+// catches the light and its near wall falls dark, where a colour alone reads
+// as paint on a smooth tube. hearth_log_shade.frag lights it and pulses the cracks
 // every frame, so the noise here (value_noise.frag) runs only when the view
 // changes.
 precision highp float;
@@ -15,8 +19,10 @@ in vec3 v_normal;
 in vec3 v_log;
 in float v_seed;
 in float v_radius;
+in vec4 v_axis;
 layout(location = 0) out vec4 o_colour;
 layout(location = 1) out vec4 o_crack;
+layout(location = 2) out vec4 o_normal;
 
 uniform vec3 u_light_pos;
 uniform vec3 u_bark;
@@ -42,8 +48,54 @@ vec2 char_cells(vec2 p) {
   return vec2(sqrt(d2) - sqrt(d1), id);
 }
 
+// The bark's plates: 1 on a plate, 0 in the fissures between them, which
+// wander along the log (q.y) and break across it, so the surface reads as
+// rough relief at every scale, not as smooth stripes.
+float bark_plate(vec2 q) {
+  vec2 b = vec2(q.x * 2.6, q.y * 0.9);
+  b.x += 0.8 * fbm(q * vec2(0.9, 0.45) + 11.0);  // fissures wander
+  float fissure = 1.0 - abs(2.0 * fbm(b) - 1.0);  // 1 on the plate, 0 in a fissure
+  float across = fbm(vec2(q.x * 1.2 + 5.0, q.y * 3.5));  // plates break along the log
+  return smoothstep(0.35, 0.75, fissure) * smoothstep(0.2, 0.45, across);
+}
+float bark_rough(vec2 q) { return fbm(q * vec2(11.0, 4.0) + 3.0); }  // the plates' own texture
+// Alligator char: blocks about as long as they are wide (2-3 cm: larger
+// ones read as a tortoise shell), not long strips along the log.
+vec2 char_blocks(vec2 q) { return char_cells(vec2(q.x * 2.0, q.y * 8.0)); }
+// The blocks' low dome: each rounded, lighter and higher in its middle.
+float char_dome(vec2 cell) { return smoothstep(0.0, 0.15, cell.x); }
+
+// The relief (m) at q: the bark's plates stand about 4 mm proud of its
+// fissures, rough on top; the char's blocks are rough, between cracks up to
+// 2 mm deep, only some of them that deep (every crack as deep drew a net
+// of even grooves: snakeskin, cobbles).
+float relief(vec2 q, float char_amount) {
+  float rough = bark_rough(q);
+  float bark = 0.004 * bark_plate(q) + 0.001 * rough;
+  float deep = 0.2 + 0.8 * smoothstep(0.4, 0.8, noise(q * vec2(1.7, 5.0) + 53.0));
+  float char_height = 0.002 * deep * char_dome(char_blocks(q)) + 0.0008 * rough;
+  return mix(bark, char_height, char_amount);
+}
+
+// The side's normal with the relief: its slope along the log and around it,
+// taken over about a pixel's footprint (so detail finer than a pixel evens
+// out instead of sparkling). q: the bark's coordinates (around * 14, along (m)
+// * 5).
+vec3 relief_normal(vec3 n, vec2 q, float char_amount) {
+  vec2 eps = max(fwidth(q), vec2(0.004));
+  float h = relief(q, char_amount);
+  float dx = (relief(q + vec2(eps.x, 0.0), char_amount) - h) / eps.x;  // per unit of q.x
+  float dy = (relief(q + vec2(0.0, eps.y), char_amount) - h) / eps.y;
+  vec3 along = normalize(v_axis.xyz - n * dot(v_axis.xyz, n));
+  vec3 around = cross(n, along);  // the way q.x grows (hearth_log.vert's angle)
+  // q.x runs 14 units round the log, q.y 5 units a metre along it.
+  float per_m_around = 14.0 / (6.2831853 * v_axis.w);
+  return normalize(n - around * (dx * per_m_around) - along * (dy * 5.0));
+}
+
 void main() {
   vec3 n = normalize(v_normal);
+  vec3 shaded = n;  // with the relief
   float facing = max(dot(n, normalize(u_light_pos - v_world)), 0.0);
   vec3 colour;
   o_crack = vec4(0.0);
@@ -56,15 +108,9 @@ void main() {
     colour = mix(vec3(0.15, 0.1, 0.065), vec3(0.1, 0.068, 0.045), rings) * (1.0 - 0.85 * smoothstep(0.5, 0.9, r));
   } else {
     vec2 q = vec2(v_log.y * 14.0 + v_seed, v_log.x * 5.0);
-    // Bark: thick plates split by deep, dark fissures that wander along the
-    // log (q.y) and break across it, so the surface reads as rough relief at
-    // every scale, not as smooth stripes.
-    vec2 b = vec2(q.x * 2.6, q.y * 0.9);
-    b.x += 0.8 * fbm(q * vec2(0.9, 0.45) + 11.0);  // fissures wander
-    float fissure = 1.0 - abs(2.0 * fbm(b) - 1.0);  // 1 on the plate, 0 in a fissure
-    float across = fbm(vec2(q.x * 1.2 + 5.0, q.y * 3.5));  // plates break along the log
-    float plate = smoothstep(0.35, 0.75, fissure) * smoothstep(0.2, 0.45, across);
-    float rough = fbm(q * vec2(11.0, 4.0) + 3.0);  // the plates' own texture
+    // Bark: thick plates split by deep fissures.
+    float plate = bark_plate(q);
+    float rough = bark_rough(q);
     // Weathered bark is grayer than the wood beneath it. The plates stand
     // out little: in a fireplace's light bark reads as dark and rough; plates
     // twice as bright as their fissures read as painted planks.
@@ -81,15 +127,12 @@ void main() {
     float above = clamp(facing * 0.7 + n.y * 0.5, 0.0, 1.0);
     float below = smoothstep(-0.05, -0.55, n.y);
     float char_amount = max(smoothstep(0.3, 0.65, above + edge), smoothstep(0.3, 0.8, below + edge));
-    // Alligator char: blocks about as long as they are wide (2-3 cm: larger
-    // ones read as a tortoise shell), not
-    // long strips along the log.
-    vec2 cell = char_cells(vec2(q.x * 2.0, q.y * 8.0));
+    vec2 cell = char_blocks(q);
     // The blocks: dull black with a faint sheen, darker toward their cracks,
     // each rounded (lighter in the middle) so the char has relief.
     // Under firelight a strong dome made the blocks read as cobbles: the
     // relief is kept faint, the seams narrow.
-    float dome = smoothstep(0.0, 0.15, cell.x);
+    float dome = char_dome(cell);
     vec3 char_colour = vec3(0.045, 0.038, 0.033) * (0.9 + 0.2 * cell.y) * (0.8 + 0.2 * dome);
     // Grey ash on some blocks' crowns, most where the fire is hottest; dull,
     // as pale crowns on every block read as cobblestones.
@@ -100,6 +143,7 @@ void main() {
                 smoothstep(0.02, 0.12, cell.x);
     char_colour = mix(char_colour, vec3(0.16, 0.15, 0.14) * (0.75 + 0.25 * rough), 0.45 * ash);
     colour = mix(colour, char_colour, char_amount);
+    shaded = relief_normal(n, q, char_amount);
     // Cracks between the blocks glow where the fire licks (the underside's
     // glow is hearth_log_shade.frag's); not every crack at once.
     // Only a few blocks' borders glow, and those in broken runs, so the glow
@@ -121,4 +165,5 @@ void main() {
     o_crack = vec4(hi, (crack - hi) * 255.0, cell.y, hash(vec2(cell.y * 91.0, 3.0)));
   }
   o_colour = vec4(colour, 1.0);
+  o_normal = vec4(0.5 + 0.5 * shaded, 1.0);
 }

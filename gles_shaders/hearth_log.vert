@@ -15,6 +15,7 @@ out vec3 v_normal;
 out vec3 v_log;  // along (m), around (0..1), 1 on the end discs
 out float v_seed;
 out float v_radius;
+out vec4 v_axis;  // the log's direction; w: its radius (m)
 
 void main() {
   vec3 axis = a_to.xyz - a_from.xyz;
@@ -42,5 +43,6 @@ void main() {
   v_log = vec3(a_mesh.x * len, a_mesh.y, cap ? 1.0 : 0.0);
   v_seed = a_to.w;
   v_radius = centre ? 0.0 : 1.0;  // 0 at an end disc's centre, 1 on every rim vertex
+  v_axis = vec4(w, a_from.w);
   gl_Position = u_view_projection * vec4(p, 1.0);
 }

@@ -20,6 +20,10 @@ constexpr int kMaxLogs = 12;
 constexpr int kAround = 18;  // mesh segments around a log
 constexpr int kAlong = 16;   // segments along it: enough for a log's bends and knots
 constexpr int kLogVec4 = 2;  // per log: from + radius, to + seed
+// The log cache's targets: colour, cracks, relief normal. The firebox's
+// cache shares the first two and has no normal.
+constexpr GLenum kLogTargets[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+constexpr GLenum kFireboxTargets[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_NONE};
 
 struct LogDesc {
   Vec3 from, to;
@@ -152,10 +156,12 @@ class Hearth final : public Element {
       : s_(s), position_(position), light_(seed), seed_(static_cast<float>(seed % 1000) * 0.37f) {
     logs_cache_prog_ =
         Program::from_library("hearth_log.vert", {"value_noise.frag", "hearth_log.frag"});
-    logs_prog_ = Program::from_library("hearth_log.vert", "hearth_log_shade.frag");
+    logs_prog_ =
+        Program::from_library("hearth_log.vert", {"value_noise.frag", "hearth_log_shade.frag"});
     bed_cache_prog_ =
         Program::from_library("floor_quad.vert", {"value_noise.frag", "hearth_bed.frag"});
-    bed_prog_ = Program::from_library("floor_quad.vert", "hearth_bed_shade.frag");
+    bed_prog_ =
+        Program::from_library("floor_quad.vert", {"value_noise.frag", "hearth_bed_shade.frag"});
     if (s_.firebox.width > 0) make_firebox();
     const auto u = [&](const Program& p, const char* n) { return p.uniform(n); };
     ulc_ = {u(logs_cache_prog_, "u_view_projection"), u(logs_cache_prog_, "u_light_pos"),
@@ -163,7 +169,8 @@ class Hearth final : public Element {
     ul_ = {u(logs_prog_, "u_view_projection"), u(logs_prog_, "u_light_pos"),
            u(logs_prog_, "u_light"),           u(logs_prog_, "u_time"),
            u(logs_prog_, "u_colour"),          u(logs_prog_, "u_crack"),
-           u(logs_prog_, "u_origin"),          u(logs_prog_, "u_camera")};
+           u(logs_prog_, "u_origin"),          u(logs_prog_, "u_camera"),
+           u(logs_prog_, "u_normal")};
     ubc_ = {u(bed_cache_prog_, "u_view_projection"), u(bed_cache_prog_, "u_centre"),
             u(bed_cache_prog_, "u_half"), u(bed_cache_prog_, "u_seed")};
     ub_ = {u(bed_prog_, "u_view_projection"),
@@ -337,11 +344,13 @@ class Hearth final : public Element {
       glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, logs_fbo_.get());
+    glDrawBuffers(3, kLogTargets);
     glClearColor(0, 0, 0, 0);
     glDepthMask(GL_TRUE);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     if (firebox_vertices_ > 0) {
       // The firebox shares the logs' cache: the logs, drawn after it, hide it where they stand.
+      glDrawBuffers(3, kFireboxTargets);
       firebox_cache_prog_.use();
       glUniformMatrix4fv(ufc_[0], 1, GL_FALSE, f.view_projection.m);
       const Vec3 lp = light_pos();
@@ -359,6 +368,7 @@ class Hearth final : public Element {
       glDisable(GL_DEPTH_TEST);
     }
     if (log_count_ > 0) {
+      glDrawBuffers(3, kLogTargets);
       logs_cache_prog_.use();
       glUniformMatrix4fv(ulc_[0], 1, GL_FALSE, f.view_projection.m);
       const Vec3 lp = light_pos();
@@ -447,9 +457,12 @@ class Hearth final : public Element {
                            log_colour_tex_.get(), 0);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D,
                            log_crack_tex_.get(), 0);
+    // The normal with the bark's relief, 8 bits a component (enough for light).
+    log_normal_tex_ = make_cache_texture(GL_RGBA8, w, h);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D,
+                           log_normal_tex_.get(), 0);
     logs_depth_ = attach_depth_buffer(w, h);
-    const GLenum both[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glDrawBuffers(2, both);
+    glDrawBuffers(3, kLogTargets);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw RuntimeError("hearth: log cache framebuffer incomplete");
     bed_tex_ = make_cache_texture(GL_RGBA8, w, h);
@@ -512,6 +525,9 @@ class Hearth final : public Element {
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_2D, log_crack_tex_.get());
     glUniform1i(ul_[5], 1);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, log_normal_tex_.get());
+    glUniform1i(ul_[8], 2);
     glActiveTexture(GL_TEXTURE0);
     glUniform2i(ul_[6], cache_key_.viewport[0], cache_key_.viewport[1]);
     glUniform3f(ul_[7], f.camera_position.x, f.camera_position.y, f.camera_position.z);
@@ -536,7 +552,7 @@ class Hearth final : public Element {
   Buffer mesh_vbo_, inst_vbo_;
   GLsizei vertex_count_ = 0, log_count_ = 0;
   std::array<GLint, 3> ulc_{};
-  std::array<GLint, 8> ul_{};
+  std::array<GLint, 9> ul_{};
   GLsizei back_count_ = 0;  // logs [0, back_count_) behind the flames, the rest in front
   std::array<GLint, 4> ubc_{};
   std::array<GLint, 8> ub_{};
@@ -549,7 +565,7 @@ class Hearth final : public Element {
   std::array<GLint, 4> uf_{};
   Fixed right_flicker_ = Fixed::from_int(1);
   // The cache (refresh_cache): per screen pixel, what the view alone decides.
-  Texture log_colour_tex_, log_crack_tex_, bed_tex_;
+  Texture log_colour_tex_, log_crack_tex_, log_normal_tex_, bed_tex_;
   Renderbuffer logs_depth_;
   Framebuffer logs_fbo_, bed_fbo_;
   CacheKey cache_key_;

@@ -9,9 +9,12 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/fixed.h"
+#include "scene/scene.h"
 #include "scene/scene_file.h"
 #include "support/render_harness.h"
 #include "support/scene_text.h"
+#include "wind/step_context.h"
 
 namespace candela {
 namespace {
@@ -70,6 +73,54 @@ TEST(HearthRender, EmbersPulseOverTime) {
   }
   EXPECT_GT(lit, 100);
   EXPECT_GT(changed, lit / 10);
+}
+
+TEST(HearthRender, EmbersPulseIrregularlyNotToABeat) {
+  // A coal's glow rises and falls as air reaches it, at no fixed pace: a
+  // steady beat (each coal a sine) repeats itself every few seconds, which
+  // its autocorrelation shows as a second peak as high as 1.
+  test::RenderHarness h(scene("width = 0.8\ndepth = 0.4\nlogs = 0"), kW, kH);
+  h.run(1);
+  constexpr int kSamples = 240;           // 24 s, ten a second
+  std::vector<std::vector<double>> glow;  // per sample, the red of every pixel
+  for (int i = 0; i < kSamples; ++i) {
+    // The hearth's look is a function of the time alone: step straight there.
+    StepContext step;
+    step.step = static_cast<uint64_t>(i) * 6;
+    step.dt = Fixed::from_ratio(1, 60);
+    step.time = Fixed::from_ratio(i, 10);
+    h.scene().update(step);
+    const test::Frame f = h.read();
+    std::vector<double> red(f.rgba.size() / 4);
+    for (size_t p = 0; p < red.size(); ++p) red[p] = f.rgba[p * 4];
+    glow.push_back(std::move(red));
+  }
+  // The coals that glow: each one's highest autocorrelation beyond its first
+  // fall below zero, for lags up to 10 s.
+  std::vector<double> repeats;
+  for (size_t p = 0; p < glow[0].size(); ++p) {
+    double mean = 0;
+    for (const auto& g : glow) mean += g[p] / kSamples;
+    if (mean < 30) continue;
+    std::vector<double> x;
+    double var = 0;
+    for (const auto& g : glow) x.push_back(g[p] - mean), var += (g[p] - mean) * (g[p] - mean);
+    if (var < 1e-9) continue;
+    bool fell = false;
+    double peak = -1;
+    for (int lag = 1; lag <= 100; ++lag) {
+      double c = 0;
+      for (int i = 0; i + lag < kSamples; ++i) c += x[i] * x[i + lag];
+      c /= var * (kSamples - lag) / kSamples;
+      if (c < 0) fell = true;
+      if (fell) peak = std::max(peak, c);
+    }
+    repeats.push_back(peak);
+  }
+  ASSERT_GT(repeats.size(), 50u) << "glowing pixels";
+  std::sort(repeats.begin(), repeats.end());
+  // Each coal a sine: 0.998; each its own smooth noise: 0.22.
+  EXPECT_LT(repeats[repeats.size() / 2], 0.6) << "the median coal's best repeat";
 }
 
 TEST(HearthRender, EmbersAreBrokenCoalsNotATiledFloor) {
@@ -170,6 +221,59 @@ TEST(HearthRender, AFrontLogIsShadedRoundLightAlongItsTopDarkUnderneath) {
   // Lit from behind, its face is dark, as front logs in footage are: a
   // brown face as bright as the flames' fill light read as a lit plank (5.7).
   EXPECT_LT(lower, 5.0) << "the lower half, of 255";
+}
+
+TEST(HearthRender, TheBarksReliefCatchesTheFirelight) {
+  // A log lit from the left, then from the right: its colour is the same in
+  // both, so where the light alone made the difference the ratio of the two
+  // pictures would change only slowly across the log (its round form, the
+  // distance to the light). The bark's plates, fissures and char blocks
+  // stand in relief, so their faces turned to the light brighten and those
+  // turned away darken: the ratio changes from pixel to pixel, the texture
+  // of wood, not of paint on a smooth tube.
+  const auto lit_from = [&](double x) {
+    const std::string hearth =
+        "width = 0.8\ndepth = 0.4\nembers = 0\nlight_strength = 5.0\nlight_at = [" +
+        std::to_string(x) +
+        ", 0.25, 0.2]\n"
+        "[[element.log]]\nfrom = [-0.35, 0.07, 0.1]\nto = [0.35, 0.07, 0.1]\nradius = 0.07\n";
+    test::RenderHarness r(scene(hearth), 640, 360);
+    r.run(3);
+    return r.read();
+  };
+  const test::Frame left = lit_from(-0.3), right = lit_from(0.3);
+  // log(left / right) over the middle of the log's length, where both lights
+  // reach it (rows 169-222 are the log).
+  constexpr int x0 = 240, x1 = 400, y0 = 150, y1 = 240, w = x1 - x0;
+  std::vector<double> ratio(w * (y1 - y0), 0.0);
+  std::vector<bool> seen(ratio.size(), false);
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const double a = left.luma(x, y), b = right.luma(x, y);
+      if (a < 12 || b < 12) continue;  // too dark to tell steps of 1/255 from relief
+      ratio[(y - y0) * w + x - x0] = std::log(a / b);
+      seen[(y - y0) * w + x - x0] = true;
+    }
+  // Each pixel against the mean of its 5x5 neighbours (all on the log's face,
+  // away from its outline): what changes from pixel to pixel.
+  double fine = 0;
+  int n = 0;
+  for (int y = y0 + 2; y < y1 - 2; ++y)
+    for (int x = x0 + 2; x < x1 - 2; ++x) {
+      double sum = 0;
+      int k = 0;
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+          const auto i = static_cast<size_t>((y + dy - y0) * w + x + dx - x0);
+          if (seen[i]) sum += ratio[i], ++k;
+        }
+      if (k < 25) continue;
+      const double d = ratio[static_cast<size_t>((y - y0) * w + x - x0)] - sum / k;
+      fine += d * d, ++n;
+    }
+  ASSERT_GT(n, 2000) << "pixels on the log's face lit by both lights";
+  // A smooth log (the bark only painted on) gives 0.08, the relief 0.30.
+  EXPECT_GT(std::sqrt(fine / n), 0.15) << "the ratio's change from pixel to pixel (log)";
 }
 
 TEST(HearthRender, AFrontLogHidesTheFeetOfAFire) {
