@@ -70,6 +70,8 @@ LoopResult run_loop(Display& display, RunningScene scene, const LoopSettings& s)
   FramePacer pace(display.paced_by_vsync(), s.realtime, s.steps_per_second, s.frames_per_second,
                   s.max_frames);
   FrameReports reports(s.stats, kiosk, s.notify, FramePacer::Clock::now());
+  // Frame times for the scene's automatic quality (LoopSettings::time_lockstep_frames).
+  const bool timed = display.paced_by_vsync() || s.realtime || s.time_lockstep_frames;
   LoopResult result;
   while (pace.more()) {
     if (s.stop && s.stop->load(std::memory_order_relaxed)) break;
@@ -109,7 +111,7 @@ LoopResult run_loop(Display& display, RunningScene scene, const LoopSettings& s)
     }
     display.present();
     const auto end = FramePacer::Clock::now();
-    frame.last_frame_ms = std::chrono::duration<double, std::milli>(end - begin).count();
+    if (timed) frame.last_frame_ms = std::chrono::duration<double, std::milli>(end - begin).count();
     reports.presented(pace.frames(), begin, end, frame.width, frame.height);
     pace.end_frame(begin);
   }

@@ -31,6 +31,13 @@ struct LoopSettings {
   // (for automation through the control socket). Off: lockstep, as fast as
   // frames can be drawn (deterministic recordings, --bench).
   bool realtime = false;
+  // Each frame's time reaches the scene (FrameContext::last_frame_ms: the
+  // Perlin fire's automatic quality holds its frame rate by it) only where
+  // animation runs in real time (vsync or `realtime`): a lockstep run (a
+  // recording, --bench) has no frame rate to hold, so it draws every frame at
+  // the scene's own quality, the same on any machine. On: in lockstep too
+  // (tests of automatic quality).
+  bool time_lockstep_frames = false;
   const std::atomic<bool>* stop = nullptr;  // set by a signal handler
   FrameStats* stats = nullptr;
   InputHub* inputs = nullptr;    // sensors, camera, control socket: drained once per frame

@@ -96,6 +96,7 @@ void RenderHarness::run(uint64_t frames) {
   s.max_frames = frames_;
   s.steps_per_second = desc_.steps_per_second;
   s.frames_per_second = desc_.steps_per_second;
+  s.time_lockstep_frames = time_frames_;
   run_frame_loop(*display_, *scene_, s);
 }
 

@@ -56,6 +56,9 @@ class RenderHarness {
 
   // Runs `frames` frames in lockstep (1 step per frame at 60 steps/s).
   void run(uint64_t frames);
+  // Hands each frame's time to the scene, as a live display does (automatic
+  // quality follows it); off by default, as in any lockstep run.
+  void time_frames(bool on) { time_frames_ = on; }
   // Draws the last presented frame again and reads it back before it is
   // presented (so it works on every backend, not only headless). Uses the
   // current GL context: keep one harness alive at a time.
@@ -70,6 +73,7 @@ class RenderHarness {
   std::unique_ptr<Scene> scene_;
   uint64_t frames_ = 0;
   uint64_t seed_;
+  bool time_frames_ = false;
 };
 
 }  // namespace candela::test
