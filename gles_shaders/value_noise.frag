@@ -22,12 +22,23 @@ float fbm(vec2 p) { return 0.55 * noise(p) + 0.3 * noise(p * 2.1 + 7.0) + 0.15 *
 // An ember's glow in time, 0..1: two octaves of smooth 1-D noise through a
 // random value every 1/rate s (seed: the ember's own, 0..1), stretched so it
 // spends time both dim and flaring. Air reaching a coal comes and goes at
-// no fixed pace: a sine's steady beat reads as a machine's.
+// no fixed pace: a sine's steady beat reads as a machine's. Its random
+// values come from an integer hash: hash()'s float arithmetic rounds
+// differently on x86 and arm64 (fused multiply-add), and the glowing cracks
+// then differed by up to 65 of 255 between the two builds' frames.
+// (highp: a fragment shader's ints are mediump by default, 16 bits on some GPUs.)
+float ember_value(float i, highp uint seed) {
+  highp uint h = uint(int(i)) * 747796405u + seed * 2891336453u;
+  h = (h ^ (h >> 16u)) * 2246822519u;
+  h = (h ^ (h >> 13u)) * 3266489917u;
+  return float(h >> 8u) * (1.0 / 16777216.0);
+}
 float ember_pulse(float t, float rate, float seed) {
+  highp uint s = uint(seed * 255.0 + 0.5);
   vec2 x = vec2(t * rate, t * rate * 2.7 + 5.0);
   vec2 i = floor(x), f = fract(x);
-  vec2 s = f * f * (3.0 - 2.0 * f);
-  float a = mix(hash(vec2(i.x, seed * 97.0)), hash(vec2(i.x + 1.0, seed * 97.0)), s.x);
-  float b = mix(hash(vec2(i.y, seed * 97.0 + 13.0)), hash(vec2(i.y + 1.0, seed * 97.0 + 13.0)), s.y);
+  vec2 w = f * f * (3.0 - 2.0 * f);
+  float a = mix(ember_value(i.x, s), ember_value(i.x + 1.0, s), w.x);
+  float b = mix(ember_value(i.y, s + 256u), ember_value(i.y + 1.0, s + 256u), w.y);
   return smoothstep(0.15, 0.85, 0.65 * a + 0.35 * b);
 }
