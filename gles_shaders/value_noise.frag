@@ -24,7 +24,7 @@ float fbm(vec2 p) { return 0.55 * noise(p) + 0.3 * noise(p * 2.1 + 7.0) + 0.15 *
 // spends time both dim and flaring. Air reaching a coal comes and goes at
 // no fixed pace: a sine's steady beat reads as a machine's. Its random
 // values come from an integer hash: hash()'s float arithmetic rounds
-// differently on x86 and arm64 (fused multiply-add), and the glowing cracks
+// differently on x86 and arm64 (fused multiply-add, most likely), and the glowing cracks
 // then differed by up to 65 of 255 between the two builds' frames.
 // (highp: a fragment shader's ints are mediump by default, 16 bits on some GPUs.)
 float ember_value(float i, highp uint seed) {

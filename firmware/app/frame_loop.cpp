@@ -71,7 +71,7 @@ LoopResult run_loop(Display& display, RunningScene scene, const LoopSettings& s)
                   s.max_frames);
   FrameReports reports(s.stats, kiosk, s.notify, FramePacer::Clock::now());
   // Frame times for the scene's automatic quality (LoopSettings::time_lockstep_frames).
-  const bool timed = display.paced_by_vsync() || s.realtime || s.time_lockstep_frames;
+  const bool timed = !pace.lockstep() || s.time_lockstep_frames;
   LoopResult result;
   while (pace.more()) {
     if (s.stop && s.stop->load(std::memory_order_relaxed)) break;
